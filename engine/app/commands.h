@@ -1,0 +1,12 @@
+// The subcommands of the `glimmer` executable. Each returns the process exit code.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace glimmer {
+
+int runRenderCommand(const std::vector<std::string>& args);
+int runViewCommand(const std::vector<std::string>& args);
+int runBenchCommand(const std::vector<std::string>& args);
+
+}  // namespace glimmer

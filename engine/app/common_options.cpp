@@ -1,0 +1,42 @@
+#include "app/common_options.h"
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "glints/methods.h"
+#include "render/aov.h"
+#include "scene/builtin_scenes.h"
+
+namespace glimmer {
+
+RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene) {
+    RenderRequest request;
+    request.scene = args.valueOr("--scene", defaultScene);
+    request.camera = args.valueOr("--camera", "");
+    request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));
+    request.settings.method = args.valueOr("--method", "smooth");
+    findGlintMethod(request.settings.method);
+    for (const std::string& assignment : args.values("--set")) request.settings.apply(assignment);
+    if (auto aov = args.value("--aov")) request.settings.debugView = findAov(*aov).viewId;
+    if (auto dir = args.value("--shader-dir")) {
+        if (!std::filesystem::is_directory(*dir)) throw Error("--shader-dir: " + *dir + ": not a directory");
+        request.shaderRoot = *dir;
+    }
+    if (auto env = args.value("--env")) {
+        if (*env != "none") {
+            if (!std::filesystem::exists(*env)) throw Error("--env: " + *env + ": file not found");
+            throw Error("--env: environment maps are not supported yet (issue: walkthrough); use --env none");
+        }
+    }
+    request.spp = args.intValue("--spp", 1, 1, 1 << 20);
+    return request;
+}
+
+std::string describeScenes() {
+    std::string text = "Built-in scenes:\n";
+    for (const std::string& name : builtinSceneNames()) text += "  " + name + "\n";
+    text += "Any .gltf / .glb path is accepted as well.\n";
+    return text;
+}
+
+}  // namespace glimmer

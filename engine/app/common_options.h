@@ -1,0 +1,13 @@
+// Options shared by render, view and bench: scene, camera, backend, method, --set, --aov, --env, --shader-dir.
+#pragma once
+#include <string>
+
+#include "core/cli.h"
+#include "render/offscreen.h"
+
+namespace glimmer {
+
+RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene);
+std::string describeScenes();
+
+}  // namespace glimmer

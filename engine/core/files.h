@@ -1,0 +1,16 @@
+// Reading whole files and locating the project's data folders (shaders/, content/).
+#pragma once
+#include <filesystem>
+#include <string>
+
+namespace glimmer {
+
+// Throws glimmer::Error naming the path when it cannot be read.
+std::string readTextFile(const std::filesystem::path& path);
+
+// The shaders folder: $GLIMMER_SHADER_DIR, else <source>/shaders as configured at build time.
+std::filesystem::path defaultShaderDir();
+// The content folder (scene files): $GLIMMER_CONTENT_DIR, else <source>/content.
+std::filesystem::path defaultContentDir();
+
+}  // namespace glimmer

@@ -1,0 +1,50 @@
+#include "glints/methods.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "core/error.h"
+
+namespace glimmer {
+
+// The smooth reference: the analytic NDF, no glints. Every glint method must converge to it.
+static GlintMethod smoothMethod() {
+    return {"smooth", "Smooth (no glints)", "GLINT_METHOD_SMOOTH", "glints/smooth.glsl",
+            "Cook & Torrance 1982; Walter et al. 2007 (GGX); Beckmann 1963", {}};
+}
+
+const std::vector<GlintMethod>& glintMethods() {
+    static const std::vector<GlintMethod> methods = {
+        smoothMethod(),
+    };
+    return methods;
+}
+
+const GlintMethod& findGlintMethod(const std::string& id) {
+    for (const GlintMethod& m : glintMethods())
+        if (m.id == id) return m;
+    std::string known;
+    for (const GlintMethod& m : glintMethods()) known += (known.empty() ? "" : ", ") + m.id;
+    throw UsageError("--method: unknown method '" + id + "' (known: " + known + ")");
+}
+
+std::string methodParamsGlsl(const GlintMethod& method) {
+    std::string glsl = "layout(std140, binding = 3) uniform MethodParamBlock { vec4 u_methodParams[" +
+                       std::to_string(kMaxMethodParams / 4) + "]; };\n";
+    static const char* lanes = "xyzw";
+    for (size_t i = 0; i < method.params.size(); ++i) {
+        std::string upper = method.params[i].name;
+        std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+        glsl += "#define P_" + upper + " u_methodParams[" + std::to_string(i / 4) + "]." + lanes[i % 4] + "\n";
+    }
+    return glsl;
+}
+
+std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values) {
+    std::vector<float> packed(kMaxMethodParams, 0.0f);
+    for (size_t i = 0; i < method.params.size() && i < packed.size(); ++i)
+        packed[i] = paramOr(values, method.params[i]);
+    return packed;
+}
+
+}  // namespace glimmer

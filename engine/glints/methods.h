@@ -1,0 +1,33 @@
+// The table of glint methods. Each entry names its shader file (shaders/glints/<file>), the define that selects
+// it in the lighting program, its parameters (defaults, ranges, meanings) and the paper it implements.
+// Adding a method: write shaders/glints/<name>.glsl with the interface documented in shaders/glints/README.md,
+// add a function returning its GlintMethod below and list it in glintMethods().
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+
+namespace glimmer {
+
+struct GlintMethod {
+    std::string id;           // command-line name, e.g. "deliot2023"
+    std::string title;        // display name
+    std::string define;       // e.g. "GLINT_METHOD_DELIOT2023"
+    std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023.glsl"
+    std::string citation;     // paper reference
+    std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
+};
+
+const std::vector<GlintMethod>& glintMethods();
+// Throws UsageError("--method: unknown method 'x' (known: ...)").
+const GlintMethod& findGlintMethod(const std::string& id);
+
+// GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter.
+std::string methodParamsGlsl(const GlintMethod& method);
+// Packs values in the order of methodParamsGlsl (std140 vec4 array).
+std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values);
+
+constexpr int kMaxMethodParams = 64;
+
+}  // namespace glimmer

@@ -1,0 +1,61 @@
+#include "platform/glfw_window.h"
+
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+
+#include <cstdlib>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace glimmer {
+namespace {
+std::string g_lastGlfwError;
+void onGlfwError(int, const char* description) { g_lastGlfwError = description ? description : "unknown"; }
+
+void initGlfwOnce() {
+    static bool initialized = false;
+    if (initialized) return;
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) throw Error("GLFW: cannot initialize (" + g_lastGlfwError + "); is a display available?");
+    std::atexit(glfwTerminate);
+    initialized = true;
+}
+}  // namespace
+
+bool GlfwWindow::displayAvailable() {
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    return (x11 && *x11) || (wayland && *wayland);
+}
+
+GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool visible) {
+    initGlfwOnce();
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
+#ifndef NDEBUG
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+#endif
+    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (!window_) throw Error("GLFW: cannot create a 4.5 core window (" + g_lastGlfwError + ")");
+    makeCurrent();
+    loadGLFunctions(reinterpret_cast<void* (*)(const char*)>(glfwGetProcAddress), "GLFW");
+}
+
+GlfwWindow::~GlfwWindow() {
+    if (window_) glfwDestroyWindow(window_);
+}
+
+void GlfwWindow::makeCurrent() { glfwMakeContextCurrent(window_); }
+bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(window_); }
+void GlfwWindow::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void GlfwWindow::swapBuffers() { glfwSwapBuffers(window_); }
+void GlfwWindow::setVsync(bool enabled) { glfwSwapInterval(enabled ? 1 : 0); }
+void GlfwWindow::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
+
+}  // namespace glimmer

@@ -1,0 +1,33 @@
+#include "render/aov.h"
+
+#include "core/error.h"
+
+namespace glimmer {
+
+const std::vector<AovInfo>& aovTable() {
+    static const std::vector<AovInfo> table = {
+        {"final", 0, "tone-mapped colour (PNG) or linear radiance (EXR)"},
+        {"albedo", 1, "base colour"},
+        {"normal", 2, "world-space shading normal"},
+        {"depth", 3, "distance from the camera (m)"},
+        {"uv", 4, "UV0 (32-bit)"},
+        {"duvdx", 5, "UV derivative along screen x"},
+        {"duvdy", 6, "UV derivative along screen y"},
+        {"glint", 7, "the NDF term D of the first light alone (linear)"},
+        {"footprint", 8, "footprint: R anisotropy ratio, G LOD, B/A method-specific"},
+        {"tangent", 9, "world-space tangent"},
+        {"material", 10, "R alpha, G metallic, B material id"},
+        {"extra", 11, "method-specific debug channel (see the method's documentation)"},
+    };
+    return table;
+}
+
+const AovInfo& findAov(const std::string& name) {
+    for (const AovInfo& aov : aovTable())
+        if (aov.name == name) return aov;
+    std::string known;
+    for (const AovInfo& aov : aovTable()) known += (known.empty() ? "" : ", ") + aov.name;
+    throw UsageError("--aov: unknown output '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace glimmer

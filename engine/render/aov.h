@@ -1,0 +1,19 @@
+// Output channels of `glimmer render --aov` and the window's debug views. Ids mirror VIEW_* in
+// shaders/common/frame.glsl.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace glimmer {
+
+struct AovInfo {
+    std::string name;
+    int viewId;
+    std::string meaning;
+};
+
+const std::vector<AovInfo>& aovTable();
+// Throws UsageError naming --aov for unknown names.
+const AovInfo& findAov(const std::string& name);
+
+}  // namespace glimmer

@@ -1,0 +1,48 @@
+#include "render/gbuffer.h"
+
+#include "core/error.h"
+
+namespace glimmer {
+
+static void checkComplete(GLuint fbo, const char* name) {
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(std::string("framebuffer ") + name + " incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+static gl::Framebuffer createFramebuffer(const char* label) {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    glObjectLabel(GL_FRAMEBUFFER, id, -1, label);
+    return gl::Framebuffer(id);
+}
+
+void FrameTargets::resize(int width, int height) {
+    if (width == width_ && height == height_) return;
+    width_ = width;
+    height_ = height;
+    static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
+    gbufferFbo_ = createFramebuffer("gbuffer");
+    GLenum drawBuffers[kGBufferColorCount];
+    for (int i = 0; i < kGBufferColorCount; ++i) {
+        gbuffer_[i] = gl::createTexture2D(formats[i], width, height);
+        glNamedFramebufferTexture(gbufferFbo_.id(), GL_COLOR_ATTACHMENT0 + i, gbuffer_[i].id(), 0);
+        drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
+    }
+    glNamedFramebufferDrawBuffers(gbufferFbo_.id(), kGBufferColorCount, drawBuffers);
+    depth_ = gl::createTexture2D(GL_DEPTH_COMPONENT32F, width, height);
+    glNamedFramebufferTexture(gbufferFbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    checkComplete(gbufferFbo_.id(), "gbuffer");
+
+    hdrFbo_ = createFramebuffer("hdr");
+    hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
+    glNamedFramebufferTexture(hdrFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
+    checkComplete(hdrFbo_.id(), "hdr");
+
+    displayFbo_ = createFramebuffer("display");
+    display_ = gl::createTexture2D(GL_RGBA8, width, height);
+    glNamedFramebufferTexture(displayFbo_.id(), GL_COLOR_ATTACHMENT0, display_.id(), 0);
+    checkComplete(displayFbo_.id(), "display");
+}
+
+}  // namespace glimmer

@@ -1,0 +1,94 @@
+#include "render/offscreen.h"
+
+#include "core/clock.h"
+#include "core/files.h"
+#include "core/log.h"
+#include "glints/methods.h"
+#include "render/aov.h"
+#include "scene/scene_loader.h"
+
+namespace glimmer {
+
+OffscreenSession::OffscreenSession(const RenderRequest& request) {
+    Stopwatch clock;
+    baseScene_ = loadScene(request.scene);
+    sceneLoadMs_ = clock.elapsedMs();
+    baseScene_.camera(request.camera);  // validate --camera before creating a context
+    findGlintMethod(request.settings.method);
+    context_ = createHeadlessContext(request.backend);
+    scene_ = baseScene_;
+    applySceneOverrides(request.settings, scene_);
+    gpuScene_ = std::make_unique<GpuScene>(scene_);
+    clock.restart();
+    renderer_ = std::make_unique<Renderer>(request.shaderRoot.empty() ? defaultShaderDir() : request.shaderRoot,
+                                           request.settings);
+    programBuildMs_ = clock.elapsedMs();
+}
+
+OffscreenSession::~OffscreenSession() {
+    // GL objects must die while the context is current.
+    if (context_) context_->makeCurrent();
+    renderer_.reset();
+    gpuScene_.reset();
+}
+
+RenderResult OffscreenSession::render(const RenderRequest& request) {
+    context_->makeCurrent();
+    scene_ = baseScene_;
+    applySceneOverrides(request.settings, scene_);
+    gpuScene_->updateMaterialsAndLights(scene_);
+    renderer_->setSettings(request.settings);
+    const Camera& camera = scene_.camera(request.camera);
+
+    Stopwatch total;
+    std::vector<double> frameMs;
+    for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
+        Stopwatch clock;
+        renderer_->render(scene_, *gpuScene_, camera, request.width, request.height, true);
+        glFinish();
+        frameMs.push_back(clock.elapsedMs());
+    }
+    RenderResult result;
+    result.width = request.width;
+    result.height = request.height;
+    result.hdr = renderer_->readHdr();
+    result.display = renderer_->readDisplay();
+
+    nlohmann::json passes = nlohmann::json::array();
+    for (const PassTiming& t : renderer_->passTimings())
+        passes.push_back({{"name", t.name}, {"wall_ms", t.wallMs}, {"gpu_timer_ms", t.gpuMs}});
+    std::string rendererName = context_->rendererString();
+    bool software = rendererName.find("llvmpipe") != std::string::npos || rendererName.find("softpipe") != std::string::npos;
+    std::string aovName = "final";
+    for (const AovInfo& aov : aovTable())
+        if (aov.viewId == request.settings.debugView) aovName = aov.name;
+    size_t nonFinite = 0;
+    for (float v : result.hdr) nonFinite += !std::isfinite(v);
+    result.stats = {
+        {"resolution", {request.width, request.height}},
+        {"backend", backendName(context_->backend())},
+        {"gl_renderer", rendererName},
+        {"gl_version", context_->versionString()},
+        {"gpu_timers_meaningful", !software},
+        {"scene", scene_.name},
+        {"camera", camera.name},
+        {"method", request.settings.method},
+        {"aov", aovName},
+        {"passes", passes},
+        {"frame_ms", frameMs.back()},
+        {"frames", frameMs.size()},
+        {"scene_load_ms", sceneLoadMs_},
+        {"program_build_ms", programBuildMs_},
+        {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
+                    {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
+                    {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},
+    };
+    return result;
+}
+
+RenderResult renderOffscreen(const RenderRequest& request) {
+    OffscreenSession session(request);
+    return session.render(request);
+}
+
+}  // namespace glimmer

@@ -1,0 +1,173 @@
+#include "render/renderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+
+#include "core/clock.h"
+#include "gl/debug.h"
+#include "glints/methods.h"
+#include "render/shader_interface.h"
+
+namespace glimmer {
+
+Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings)
+    : shaderRoot_(std::move(shaderRoot)), settings_(settings) {
+    gl::enableDebugOutput();
+    frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
+    methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    emptyVao_ = gl::VertexArray(vao);
+    for (gl::Query& q : timerQueries_) {
+        GLuint id = 0;
+        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+        q = gl::Query(id);
+    }
+    buildPrograms();
+}
+
+gl::ProgramDesc Renderer::lightingDesc() const {
+    const GlintMethod& method = findGlintMethod(settings_.method);
+    gl::ProgramDesc desc;
+    desc.name = "lighting/" + method.id;
+    desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
+    desc.defines = {method.define};
+    desc.preamble = methodParamsGlsl(method);
+    desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
+    return desc;
+}
+
+void Renderer::buildPrograms() {
+    // Build all first, then swap: a failure leaves the previous programs in place.
+    gl::Program gbuffer(shaderRoot_, {"gbuffer", {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}});
+    gl::Program lighting(shaderRoot_, lightingDesc());
+    gl::Program tonemap(shaderRoot_, {"tonemap", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "tonemap.frag"}}});
+    gbufferProgram_ = std::move(gbuffer);
+    lightingProgram_ = std::move(lighting);
+    tonemapProgram_ = std::move(tonemap);
+}
+
+void Renderer::reloadPrograms() { buildPrograms(); }
+
+void Renderer::setSettings(const RenderSettings& settings) {
+    bool methodChanged = settings.method != settings_.method;
+    RenderSettings previous = settings_;
+    settings_ = settings;
+    if (methodChanged) {
+        try {
+            lightingProgram_ = gl::Program(shaderRoot_, lightingDesc());
+        } catch (...) {
+            settings_ = previous;
+            throw;
+        }
+    }
+}
+
+std::vector<std::filesystem::path> Renderer::shaderDependencies() const {
+    std::vector<std::filesystem::path> all;
+    for (const gl::Program* p : {&gbufferProgram_, &lightingProgram_, &tonemapProgram_})
+        for (const auto& f : p->dependencies())
+            if (std::find(all.begin(), all.end(), f) == all.end()) all.push_back(f);
+    return all;
+}
+
+void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
+                      bool measurePasses) {
+    targets_.resize(width, height);
+    timings_.clear();
+
+    FrameUniforms frame{};
+    frame.view = camera.view();
+    frame.projection = camera.projection(float(width) / float(height));
+    frame.viewProjection = frame.projection * frame.view;
+    frame.inverseViewProjection = glm::inverse(frame.viewProjection);
+    frame.cameraPosition = glm::vec4(camera.position, 1.0f);
+    frame.skyColor = glm::vec4(scene.skyColor, 1.0f);
+    frame.viewport = {width, height, int(frameIndex_), settings_.debugView};
+    frame.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
+                      settings_.common_("ambient"), 0.0f};
+    glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(frame), &frame);
+    std::vector<float> params = packMethodParams(findGlintMethod(settings_.method), settings_.methodValues(settings_.method));
+    glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms_.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodParams_.id());
+
+    Stopwatch clock;
+    int queryIndex = 0;
+    auto beginPass = [&](const char* name) {
+        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+        if (measurePasses) {
+            glFinish();
+            clock.restart();
+            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[queryIndex].id());
+        }
+    };
+    auto endPass = [&](const char* name) {
+        if (measurePasses) {
+            glEndQuery(GL_TIME_ELAPSED);
+            glFinish();
+            PassTiming t{name, clock.elapsedMs(), 0.0};
+            GLuint64 ns = 0;
+            glGetQueryObjectui64v(timerQueries_[queryIndex].id(), GL_QUERY_RESULT, &ns);
+            t.gpuMs = double(ns) * 1e-6;
+            timings_.push_back(t);
+            ++queryIndex;
+        }
+        glPopDebugGroup();
+    };
+
+    glViewport(0, 0, width, height);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+
+    // G-buffer: reversed-Z (clear 0, GREATER passes), no blending, no culling (glTF double-sided surfaces).
+    beginPass("gbuffer");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
+    float clearDepth = 0.0f;
+    glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
+    gbufferProgram_.use();
+    gpuScene.drawInstances(scene);
+    endPass("gbuffer");
+
+    beginPass("lighting");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    lightingProgram_.use();
+    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
+    glBindTextureUnit(5, targets_.depthTexture());
+    glBindVertexArray(emptyVao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    endPass("lighting");
+
+    beginPass("tonemap");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_.displayFramebuffer());
+    tonemapProgram_.use();
+    glBindTextureUnit(0, targets_.hdrTexture());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    endPass("tonemap");
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++frameIndex_;
+}
+
+std::vector<float> Renderer::readHdr() const {
+    std::vector<float> pixels(size_t(targets_.width()) * targets_.height() * 4);
+    glGetTextureImage(targets_.hdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    return pixels;
+}
+
+std::vector<uint8_t> Renderer::readDisplay() const {
+    std::vector<uint8_t> pixels(size_t(targets_.width()) * targets_.height() * 4);
+    glGetTextureImage(targets_.displayTexture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
+    return pixels;
+}
+
+}  // namespace glimmer

@@ -1,0 +1,64 @@
+// The deferred renderer: G-buffer pass, lighting pass (with the selected glint method), tone-mapping pass.
+// Owns its programs and frame targets; the scene is uploaded separately (GpuScene).
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "render/gbuffer.h"
+#include "render/gpu_scene.h"
+#include "render/settings.h"
+#include "scene/scene.h"
+
+namespace glimmer {
+
+struct PassTiming {
+    std::string name;
+    double wallMs = 0.0;   // wall clock around glFinish (meaningful everywhere, adds sync points)
+    double gpuMs = 0.0;    // GL_TIME_ELAPSED (meaningful on real GPUs only; llvmpipe times the submit)
+};
+
+class Renderer {
+public:
+    // Builds every program; throws gl::ShaderError with file:line on compile errors.
+    Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings);
+
+    // Switches method or parameters. Rebuilds the lighting program when the method changes.
+    void setSettings(const RenderSettings& settings);
+    const RenderSettings& settings() const { return settings_; }
+    // Rebuilds every program from disk; on failure keeps the previous ones and rethrows.
+    void reloadPrograms();
+    const std::filesystem::path& shaderRoot() const { return shaderRoot_; }
+    std::vector<std::filesystem::path> shaderDependencies() const;
+
+    // Renders one frame into the targets (HDR radiance or the debug view, then the display image).
+    // With measurePasses, each pass is closed by glFinish and timed (adds sync points; off in the window).
+    void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
+                bool measurePasses = false);
+    const std::vector<PassTiming>& passTimings() const { return timings_; }
+
+    const FrameTargets& targets() const { return targets_; }
+    // Readbacks, bottom row first (GL order).
+    std::vector<float> readHdr() const;        // RGBA32F
+    std::vector<uint8_t> readDisplay() const;  // RGBA8, tone-mapped sRGB
+    uint32_t frameIndex() const { return frameIndex_; }
+
+private:
+    void buildPrograms();
+    gl::ProgramDesc lightingDesc() const;
+
+    std::filesystem::path shaderRoot_;
+    RenderSettings settings_;
+    gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
+    FrameTargets targets_;
+    gl::Buffer frameUniforms_, methodParams_;
+    gl::VertexArray emptyVao_;
+    gl::Query timerQueries_[3];
+    std::vector<PassTiming> timings_;
+    uint32_t frameIndex_ = 0;
+};
+
+}  // namespace glimmer

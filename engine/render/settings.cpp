@@ -1,0 +1,127 @@
+#include "render/settings.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "glints/methods.h"
+
+namespace glimmer {
+
+const std::vector<CommonParam>& commonParams() {
+    static const std::vector<CommonParam> params = {
+        {{"exposure", 0.0f, -16.0f, 16.0f, "exposure in stops applied before tone mapping (PNG and window)"}},
+        {{"ambient", 1.0f, 0.0f, 16.0f, "scale of the constant sky/ambient radiance (when no environment map)"}},
+        {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
+        {{"light.count", 0.0f, 0.0f, 64.0f,
+          "number of lights: 0 keeps the scene's; more adds lights around the first one's direction", {}, true}},
+        {{"material.alpha", 0.3f, 0.001f, 1.0f, "NDF roughness alpha of every material"}, true},
+        {{"material.metallic", 1.0f, 0.0f, 1.0f, "metalness of every material"}, true},
+        {{"material.ndf", 0.0f, 0.0f, 1.0f, "microfacet distribution of every material", {"ggx", "beckmann"}}, true},
+        {{"material.glinty", 1.0f, 0.0f, 1.0f, "whether every material uses the glint method (0 or 1)", {}, true},
+         true},
+        {{"material.density_scale", 1.0f, 0.0f, 1e6f, "glint density multiplier of every material", {}, false,
+          true},
+         true},
+    };
+    return params;
+}
+
+static const CommonParam* findCommon(const std::string& name) {
+    for (const CommonParam& p : commonParams())
+        if (p.spec.name == name) return &p;
+    return nullptr;
+}
+
+float RenderSettings::common_(const std::string& name) const {
+    const CommonParam* p = findCommon(name);
+    if (!p) throw Error("internal: unknown common parameter " + name);
+    return paramOr(common, p->spec);
+}
+
+const ParamValues& RenderSettings::methodValues(const std::string& id) const {
+    static const ParamValues empty;
+    auto it = methods.find(id);
+    return it == methods.end() ? empty : it->second;
+}
+
+void RenderSettings::apply(const std::string& assignment) {
+    size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("--set: expected KEY=VALUE, got '" + assignment + "'");
+    std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+    if (const CommonParam* p = findCommon(key)) {
+        common[key] = parseParamValue(p->spec, value, "--set", key);
+        return;
+    }
+    std::string methodId = method, name = key;
+    if (size_t dot = key.find('.'); dot != std::string::npos) {
+        methodId = key.substr(0, dot);
+        name = key.substr(dot + 1);
+        bool known = false;
+        for (const GlintMethod& m : glintMethods()) known |= m.id == methodId;
+        if (!known) throw UsageError("--set: unknown parameter '" + key + "' (see glimmer render --list-params)");
+    }
+    const GlintMethod& m = findGlintMethod(methodId);
+    for (const ParamSpec& spec : m.params)
+        if (spec.name == name) {
+            methods[methodId][name] = parseParamValue(spec, value, "--set", key);
+            return;
+        }
+    throw UsageError("--set: unknown parameter '" + key + "' for method " + methodId +
+                     " (see glimmer render --list-params)");
+}
+
+void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
+    for (Material& m : scene.materials) {
+        if (settings.isSet("material.alpha")) m.alpha = settings.common_("material.alpha");
+        if (settings.isSet("material.metallic")) m.metallic = settings.common_("material.metallic");
+        if (settings.isSet("material.ndf")) m.ndf = static_cast<NdfType>(int(settings.common_("material.ndf")));
+        if (settings.isSet("material.glinty")) m.glinty = settings.common_("material.glinty") > 0.5f;
+        if (settings.isSet("material.density_scale"))
+            m.glintDensityScale = settings.common_("material.density_scale");
+    }
+    float scale = settings.common_("light.intensity");
+    for (Light& light : scene.lights) light.intensity *= scale;
+    int wanted = int(settings.common_("light.count"));
+    if (wanted > 0 && !scene.lights.empty()) {
+        // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
+        Light first = scene.lights.front();
+        scene.lights.resize(1);
+        for (int i = 1; i < wanted; ++i) {
+            Light extra = first;
+            float angle = 0.35f * float(i);
+            glm::vec3 v = first.vector;
+            extra.vector = first.type == LightType::Directional
+                               ? glm::normalize(glm::vec3(v.x * std::cos(angle) - v.z * std::sin(angle), v.y,
+                                                          v.x * std::sin(angle) + v.z * std::cos(angle)))
+                               : v + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
+            scene.lights.push_back(extra);
+        }
+    }
+}
+
+std::string describeParams() {
+    std::ostringstream out;
+    auto line = [&](const std::string& key, const ParamSpec& spec, bool sceneDefault) {
+        out << "  " << key;
+        for (size_t i = key.size(); i < 28; ++i) out << ' ';
+        out << " default " << (sceneDefault ? std::string("scene") : formatParamValue(spec, spec.defaultValue));
+        if (spec.choices.empty())
+            out << "  range [" << spec.minValue << ", " << spec.maxValue << "]";
+        else {
+            out << "  one of";
+            for (const auto& c : spec.choices) out << ' ' << c;
+        }
+        out << "  " << spec.meaning << "\n";
+    };
+    out << "Common parameters (--set KEY=VALUE):\n";
+    for (const CommonParam& p : commonParams()) line(p.spec.name, p.spec, p.sceneDefault);
+    for (const GlintMethod& m : glintMethods()) {
+        out << "\nMethod " << m.id << ": " << m.title << " [" << m.citation << "]\n";
+        if (m.params.empty()) out << "  (no parameters)\n";
+        for (const ParamSpec& spec : m.params) line(m.id + "." + spec.name, spec, false);
+    }
+    return out.str();
+}
+
+}  // namespace glimmer

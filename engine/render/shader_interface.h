@@ -1,0 +1,36 @@
+// C++ mirrors of the GPU blocks declared in shaders/common/frame.glsl. Layouts must match (std140 / std430).
+#pragma once
+#include <glm/glm.hpp>
+
+namespace glimmer {
+
+struct FrameUniforms {          // std140, binding 0
+    glm::mat4 view;
+    glm::mat4 projection;
+    glm::mat4 viewProjection;
+    glm::mat4 inverseViewProjection;
+    glm::vec4 cameraPosition;
+    glm::vec4 skyColor;
+    glm::ivec4 viewport;        // width, height, frame index, debug view
+    glm::vec4 exposure;         // exposure multiplier, light count, ambient scale, unused
+};
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 4 * 16);
+
+struct GpuLight {               // std430, binding 1
+    glm::vec4 vectorType;
+    glm::vec4 colorIntensity;
+};
+
+struct GpuMaterial {            // std430, binding 2
+    glm::vec4 baseColor;
+    glm::vec4 alphaMetallicNdfGlinty;
+    glm::vec4 densityCutoff;
+};
+
+// Binding points (uniform blocks and storage buffers).
+constexpr unsigned kFrameBinding = 0;
+constexpr unsigned kLightBinding = 1;
+constexpr unsigned kMaterialBinding = 2;
+constexpr unsigned kMethodParamBinding = 3;
+
+}  // namespace glimmer

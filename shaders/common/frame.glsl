@@ -1,0 +1,40 @@
+// Per-frame data shared by every pass. Mirrors FrameUniforms in engine/render/shader_interface.h (std140).
+layout(std140, binding = 0) uniform FrameBlock {
+    mat4 u_view;
+    mat4 u_projection;
+    mat4 u_viewProjection;
+    mat4 u_inverseViewProjection;
+    vec4 u_cameraPosition;   // xyz
+    vec4 u_skyColor;         // rgb: background and constant ambient radiance when no environment map is bound
+    ivec4 u_viewport;        // width, height, frame index, debug view (AOV id)
+    vec4 u_exposure;         // x: exposure multiplier (2^EV), y: light count, z: ambient scale, w: unused
+};
+
+// Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position).
+struct GpuLight {
+    vec4 vectorType;         // xyz vector, w type
+    vec4 colorIntensity;     // rgb colour, a intensity
+};
+layout(std430, binding = 1) readonly buffer LightBlock { GpuLight u_lights[]; };
+
+// Materials (std430), indexed by the material id stored in the G-buffer.
+struct GpuMaterial {
+    vec4 baseColor;
+    vec4 alphaMetallicNdfGlinty;      // x alpha, y metallic, z ndf (0 GGX, 1 Beckmann), w glinty (0/1)
+    vec4 densityCutoff;               // x glint density scale, y alpha cutoff (< 0: opaque)
+};
+layout(std430, binding = 2) readonly buffer MaterialBlock { GpuMaterial u_materials[]; };
+
+// Debug views (--aov); mirror the table in engine/render/aov.cpp.
+const int VIEW_FINAL = 0;
+const int VIEW_ALBEDO = 1;
+const int VIEW_NORMAL = 2;
+const int VIEW_DEPTH = 3;
+const int VIEW_UV = 4;
+const int VIEW_DUVDX = 5;
+const int VIEW_DUVDY = 6;
+const int VIEW_GLINT = 7;
+const int VIEW_FOOTPRINT = 8;
+const int VIEW_TANGENT = 9;
+const int VIEW_ROUGHNESS_METALLIC = 10;
+const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)

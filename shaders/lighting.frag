@@ -1,0 +1,118 @@
+// Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
+// Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
+// metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+#include "common/frame.glsl"
+#include "common/brdf.glsl"
+#include "common/footprint.glsl"
+#include "common/glint_surface.glsl"
+#include GLINT_METHOD_FILE
+
+layout(binding = 0) uniform sampler2D g_uvDuvdx;
+layout(binding = 1) uniform sampler2D g_duvdyMaterial;
+layout(binding = 2) uniform sampler2D g_normalAlpha;
+layout(binding = 3) uniform sampler2D g_tangentMetallic;
+layout(binding = 4) uniform sampler2D g_baseColorMask;
+layout(binding = 5) uniform sampler2D g_depth;
+
+in vec2 v_ndc;
+layout(location = 0) out vec4 o_color;
+
+vec3 worldPosition(ivec2 pixel, float depth) {
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 p = u_inverseViewProjection * vec4(ndc, depth, 1.0);
+    return p.xyz / p.w;
+}
+
+// Direction towards the light and the irradiance it delivers at normal incidence.
+void lightIncidence(GpuLight light, vec3 position, out vec3 towardLight, out vec3 irradiance) {
+    vec3 radiant = light.colorIntensity.rgb * light.colorIntensity.a;
+    if (light.vectorType.w < 0.5) {
+        towardLight = normalize(light.vectorType.xyz);
+        irradiance = radiant;
+    } else {
+        vec3 d = light.vectorType.xyz - position;
+        float distance2 = max(dot(d, d), 1e-8);
+        towardLight = d * inversesqrt(distance2);
+        irradiance = radiant / distance2;
+    }
+}
+
+vec3 finiteOrZero(vec3 c) {
+    bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
+    return any(bad) ? vec3(0.0) : c;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(g_depth, pixel, 0).r;
+    int view = u_viewport.w;
+    if (depth <= 0.0) {   // reversed-Z clear value: nothing was drawn here
+        o_color = vec4(view == VIEW_FINAL ? u_skyColor.rgb : vec3(0.0), 0.0);
+        return;
+    }
+    vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
+    vec4 duvdyMaterial = texelFetch(g_duvdyMaterial, pixel, 0);
+    vec4 normalAlpha = texelFetch(g_normalAlpha, pixel, 0);
+    vec4 tangentMetallic = texelFetch(g_tangentMetallic, pixel, 0);
+    vec4 baseColorMask = texelFetch(g_baseColorMask, pixel, 0);
+
+    int materialId = int(duvdyMaterial.z + 0.5);
+    GpuMaterial material = u_materials[materialId];
+    GlintSurface s;
+    s.uv = uvDuvdx.xy;
+    s.duvdx = uvDuvdx.zw;
+    s.duvdy = duvdyMaterial.xy;
+    s.alpha = normalAlpha.w;
+    s.ndf = int(material.alphaMetallicNdfGlinty.z + 0.5);
+    s.densityScale = material.densityCutoff.x * baseColorMask.a;
+    s.materialId = materialId;
+    s.pixel = pixel;
+    s.n = normalize(normalAlpha.xyz);
+    s.t = normalize(tangentMetallic.xyz - s.n * dot(s.n, tangentMetallic.xyz));
+    s.b = duvdyMaterial.w * cross(s.n, s.t);
+    bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
+
+    vec3 position = worldPosition(pixel, depth);
+    vec3 toEye = normalize(u_cameraPosition.xyz - position);
+    mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
+    vec3 wo = worldToShading * toEye;
+    vec3 baseColor = baseColorMask.rgb;
+    float metallic = tangentMetallic.w;
+    vec3 f0 = mix(vec3(0.04), baseColor, metallic);
+    vec3 diffuseAlbedo = (1.0 - metallic) * baseColor;
+
+    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7).
+    GlintPixel glint = glintSetup(s);
+
+    vec3 radiance = u_skyColor.rgb * u_exposure.z * diffuseAlbedo;   // constant ambient (no environment map)
+    float firstLightD = 0.0;
+    int lightCount = int(u_exposure.y);
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 towardLight, irradiance;
+        lightIncidence(u_lights[i], position, towardLight, irradiance);
+        vec3 wi = worldToShading * towardLight;
+        if (wi.z <= 0.0 || wo.z <= 0.0) continue;
+        vec3 h = normalize(wi + wo);
+        float D = glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        if (i == 0) firstLightD = D;
+        vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
+        radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
+    }
+
+    vec4 result;
+    switch (view) {
+        case VIEW_ALBEDO: result = vec4(baseColor, 1.0); break;
+        case VIEW_NORMAL: result = vec4(s.n, 1.0); break;
+        case VIEW_DEPTH: result = vec4(vec3(distance(position, u_cameraPosition.xyz)), 1.0); break;
+        case VIEW_UV: result = vec4(s.uv, 0.0, 1.0); break;
+        case VIEW_DUVDX: result = vec4(s.duvdx, 0.0, 1.0); break;
+        case VIEW_DUVDY: result = vec4(s.duvdy, 0.0, 1.0); break;
+        case VIEW_GLINT: result = vec4(vec3(firstLightD), 1.0); break;
+        case VIEW_FOOTPRINT: result = glintFootprintAOV(glint, s); break;
+        case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
+        case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
+        case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
+        default: result = vec4(radiance, 1.0); break;
+    }
+    o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+}
