@@ -3,12 +3,23 @@
 // Adding a method: write shaders/glints/<name>.glsl with the interface documented in shaders/glints/README.md,
 // add a function returning its GlintMethod below and list it in glintMethods().
 #pragma once
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/params.h"
 
 namespace glimmer {
+
+// GPU resources a method needs besides its parameters (noise textures, tables). Created once per context when
+// the method is selected; bind() runs before every lighting pass. Methods use texture units 8-15 and
+// buffer bindings 8-15 (the renderer's own stay below 8).
+class GlintMethodResources {
+public:
+    virtual ~GlintMethodResources() = default;
+    virtual void bind() = 0;
+};
 
 struct GlintMethod {
     std::string id;           // command-line name, e.g. "deliot2023"
@@ -17,6 +28,8 @@ struct GlintMethod {
     std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023.glsl"
     std::string citation;     // paper reference
     std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
+    // Optional: creates the method's GPU resources (called with a current context).
+    std::function<std::unique_ptr<GlintMethodResources>()> createResources;
 };
 
 const std::vector<GlintMethod>& glintMethods();

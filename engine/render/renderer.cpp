@@ -46,6 +46,12 @@ void Renderer::buildPrograms() {
     gbufferProgram_ = std::move(gbuffer);
     lightingProgram_ = std::move(lighting);
     tonemapProgram_ = std::move(tonemap);
+    createMethodResources();
+}
+
+void Renderer::createMethodResources() {
+    const GlintMethod& method = findGlintMethod(settings_.method);
+    methodResources_ = method.createResources ? method.createResources() : nullptr;
 }
 
 void Renderer::reloadPrograms() { buildPrograms(); }
@@ -57,6 +63,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
     if (methodChanged) {
         try {
             lightingProgram_ = gl::Program(shaderRoot_, lightingDesc());
+            createMethodResources();
         } catch (...) {
             settings_ = previous;
             throw;
@@ -141,6 +148,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     lightingProgram_.use();
+    if (methodResources_) methodResources_->bind();
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());
     glBindVertexArray(emptyVao_.id());

@@ -8,6 +8,7 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "glints/methods.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
 #include "render/settings.h"
@@ -48,11 +49,13 @@ public:
 
 private:
     void buildPrograms();
+    void createMethodResources();
     gl::ProgramDesc lightingDesc() const;
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
+    std::unique_ptr<GlintMethodResources> methodResources_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_;
     gl::VertexArray emptyVao_;

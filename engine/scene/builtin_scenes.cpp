@@ -136,7 +136,7 @@ static Scene planeScene(const std::string& name, bool heightmap, bool grazing) {
         top.target = {0.0f, 0.0f, 0.0f};
         top.up = {0.0f, 0.0f, -1.0f};
         scene.cameras.push_back(top);
-        scene.lights.push_back(directional({0.25f, 1.0f, 0.15f}, 3.0f));
+        scene.lights.push_back(directional({0.25f, 1.0f, 0.15f}, 1.0f));
     } else {
         // 25 degrees: the view axis meets the plane at 25 degrees; the light faces the camera, low over the plane,
         // so the specular lobe is seen along strongly anisotropic footprints.
@@ -147,7 +147,7 @@ static Scene planeScene(const std::string& name, bool heightmap, bool grazing) {
         grazingCamera.position = {0.0f, height, heightmap ? 15.0f : 10.0f};
         grazingCamera.target = grazingCamera.position + glm::vec3(0.0f, -std::sin(angle), -std::cos(angle));
         scene.cameras.push_back(grazingCamera);
-        scene.lights.push_back(directional({0.0f, 0.45f, -1.0f}, 3.0f));
+        scene.lights.push_back(directional({0.0f, 0.45f, -1.0f}, 1.0f));
     }
     return scene;
 }
@@ -164,7 +164,7 @@ static Scene sphereScene() {
     front.position = {0.0f, 0.4f, 3.4f};
     front.target = {0.0f, 0.0f, 0.0f};
     scene.cameras.push_back(front);
-    scene.lights.push_back(directional({-0.5f, 0.7f, 0.6f}, 3.0f));
+    scene.lights.push_back(directional({-0.5f, 0.7f, 0.6f}, 2.0f));
     return scene;
 }
 

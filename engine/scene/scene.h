@@ -55,7 +55,7 @@ struct Light {
     LightType type = LightType::Directional;
     glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction towards the light; point: position
     glm::vec3 color{1.0f};
-    float intensity = 3.0f;               // directional: irradiance at normal incidence; point: intensity (W/sr-ish)
+    float intensity = 1.0f;               // directional: irradiance at normal incidence; point: intensity (W/sr-ish)
 };
 
 struct Instance {
