@@ -3,11 +3,13 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/error.h"
+#include "scene/atrium.h"
 
 namespace glimmer {
 
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"plane90", "plane25", "heightmap90", "heightmap25", "sphere"};
+    static const std::vector<std::string> names = {"plane90", "plane25", "heightmap90", "heightmap25", "sphere",
+                                                    "atrium"};
     return names;
 }
 
@@ -174,6 +176,7 @@ Scene makeBuiltinScene(const std::string& name) {
     if (name == "heightmap90") return planeScene(name, true, false);
     if (name == "heightmap25") return planeScene(name, true, true);
     if (name == "sphere") return sphereScene();
+    if (name == "atrium") return makeAtriumScene();
     throw UsageError("--scene: unknown scene '" + name + "'");
 }
 

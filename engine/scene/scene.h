@@ -72,6 +72,7 @@ struct Scene {
     std::vector<Instance> instances;
     std::vector<Light> lights;
     std::vector<Camera> cameras;   // first is the default
+    std::vector<std::string> walkthrough;  // camera names in the order of a walkthrough path (may be empty)
     std::string environment;       // "" = the procedural default sky, "none", or an image path
     glm::vec3 skyColor{0.0f};      // background and constant ambient radiance when no environment is active
 

@@ -7,23 +7,43 @@
 #include "core/files.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/scene_file.h"
 
 namespace glimmer {
 
+std::vector<std::string> contentSceneNames() {
+    std::vector<std::string> names;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(defaultContentDir(), error))
+        if (entry.is_regular_file() && entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+static bool isPlainName(const std::string& name) {
+    return !name.empty() && name.find('/') == std::string::npos && name.find('\\') == std::string::npos &&
+           name.find('.') == std::string::npos;
+}
+
 Scene loadScene(const std::string& nameOrPath) {
-    if (isBuiltinScene(nameOrPath)) return makeBuiltinScene(nameOrPath);
+    if (isPlainName(nameOrPath)) {
+        std::filesystem::path contentFile = defaultContentDir() / (nameOrPath + ".json");
+        if (std::filesystem::is_regular_file(contentFile)) return loadSceneFile(contentFile);
+        if (isBuiltinScene(nameOrPath)) return makeBuiltinScene(nameOrPath);
+        std::string known;
+        for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+        for (const std::string& n : contentSceneNames())
+            if (!isBuiltinScene(n)) known += ", " + n;
+        throw UsageError("--scene: unknown scene '" + nameOrPath + "' (known: " + known +
+                         "; or a path to a .json, .gltf or .glb file)");
+    }
     std::filesystem::path path(nameOrPath);
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (ext == ".gltf" || ext == ".glb") {
-        if (!std::filesystem::exists(path)) throw Error(nameOrPath + ": scene file not found");
-        return loadGltfScene(path);
-    }
-    std::string known;
-    for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
-    if (ext.empty()) throw UsageError("--scene: unknown scene '" + nameOrPath + "' (built-in: " + known + ")");
+    if (ext != ".gltf" && ext != ".glb" && ext != ".json")
+        throw UsageError("--scene: " + nameOrPath + ": unsupported scene type (use .json, .gltf, .glb or a scene name)");
     if (!std::filesystem::exists(path)) throw Error(nameOrPath + ": scene file not found");
-    throw UsageError("--scene: " + nameOrPath + ": unsupported scene type (use .gltf, .glb or a built-in name)");
+    return ext == ".json" ? loadSceneFile(path) : loadGltfScene(path);
 }
 
 }  // namespace glimmer

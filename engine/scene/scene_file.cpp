@@ -1,0 +1,394 @@
+#include "scene/scene_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/error.h"
+#include "core/files.h"
+#include "core/image_io.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+#include "scene/mesh_builder.h"
+
+namespace glimmer {
+namespace {
+
+using Json = nlohmann::json;
+
+// Reads values out of the JSON with errors that name the file and the key path ("materials[2].alpha").
+class Reader {
+public:
+    explicit Reader(std::filesystem::path file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        throw Error(file_.string() + ": " + where + ": " + what);
+    }
+    void checkKeys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const {
+        if (!object.is_object()) fail(where, "expected an object");
+        for (const auto& item : object.items()) {
+            bool known = false;
+            for (const char* key : allowed) known |= item.key() == key;
+            if (!known) {
+                std::string list;
+                for (const char* key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
+                fail(where, "unknown key '" + item.key() + "' (known: " + list + ")");
+            }
+        }
+    }
+    float number(const Json& value, const std::string& where) const {
+        if (!value.is_number()) fail(where, "expected a number");
+        double v = value.get<double>();
+        if (!std::isfinite(v)) fail(where, "expected a finite number");
+        return float(v);
+    }
+    float number(const Json& object, const char* key, const std::string& where, float fallback, float lo, float hi) const {
+        if (!object.contains(key)) return fallback;
+        float v = number(object[key], where + "." + key);
+        if (v < lo || v > hi) fail(where + "." + key, "value " + std::to_string(v) + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return v;
+    }
+    int integer(const Json& object, const char* key, const std::string& where, int fallback, int lo, int hi) const {
+        if (!object.contains(key)) return fallback;
+        const Json& v = object[key];
+        if (!v.is_number_integer()) fail(where + "." + key, "expected an integer");
+        int i = v.get<int>();
+        if (i < lo || i > hi) fail(where + "." + key, "value " + std::to_string(i) + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return i;
+    }
+    bool boolean(const Json& object, const char* key, const std::string& where, bool fallback) const {
+        if (!object.contains(key)) return fallback;
+        if (!object[key].is_boolean()) fail(where + "." + key, "expected true or false");
+        return object[key].get<bool>();
+    }
+    std::string string(const Json& object, const char* key, const std::string& where, const std::string& fallback = "") const {
+        if (!object.contains(key)) return fallback;
+        if (!object[key].is_string()) fail(where + "." + key, "expected a string");
+        return object[key].get<std::string>();
+    }
+    template <int N>
+    glm::vec<N, float> vec(const Json& value, const std::string& where) const {
+        if (!value.is_array() || value.size() != size_t(N)) fail(where, "expected an array of " + std::to_string(N) + " numbers");
+        glm::vec<N, float> v;
+        for (int i = 0; i < N; ++i) v[i] = number(value[size_t(i)], where + "[" + std::to_string(i) + "]");
+        return v;
+    }
+    // Colour: [r, g, b] or [r, g, b, a] (linear).
+    glm::vec4 colour(const Json& value, const std::string& where) const {
+        if (value.is_array() && value.size() == 3) return glm::vec4(vec<3>(value, where), 1.0f);
+        return vec<4>(value, where);
+    }
+    std::filesystem::path path(const Json& object, const char* key, const std::string& where) const {
+        std::filesystem::path p = string(object, key, where);
+        if (p.is_relative()) p = file_.parent_path() / p;
+        return p;
+    }
+    const std::filesystem::path& file() const { return file_; }
+
+private:
+    std::filesystem::path file_;
+};
+
+// Transform from "translation" [x,y,z], "rotationDegrees" [x,y,z] (applied about x, then y, then z) and
+// "scale" (number or [x,y,z]): M = T * Rz * Ry * Rx * S.
+glm::mat4 readTransform(const Reader& r, const Json& o, const std::string& where) {
+    glm::mat4 m(1.0f);
+    if (o.contains("translation")) m = glm::translate(m, r.vec<3>(o["translation"], where + ".translation"));
+    if (o.contains("rotationDegrees")) {
+        glm::vec3 deg = r.vec<3>(o["rotationDegrees"], where + ".rotationDegrees");
+        m = glm::rotate(m, glm::radians(deg.z), glm::vec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(deg.y), glm::vec3(0, 1, 0));
+        m = glm::rotate(m, glm::radians(deg.x), glm::vec3(1, 0, 0));
+    }
+    if (o.contains("scale")) {
+        glm::vec3 s = o["scale"].is_number() ? glm::vec3(r.number(o["scale"], where + ".scale")) : r.vec<3>(o["scale"], where + ".scale");
+        if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(where + ".scale", "scale must not be zero");
+        m = glm::scale(m, s);
+    }
+    return m;
+}
+
+MeshData generatedMesh(const Reader& r, const Json& o, const std::string& where) {
+    r.checkKeys(o, where, {"name", "generator", "halfExtent", "cells", "uvOffset", "radius", "segments", "rings", "size", "height"});
+    std::string generator = r.string(o, "generator", where);
+    MeshData mesh;
+    if (generator == "plane") {
+        mesh = makeGroundPlane(r.number(o, "halfExtent", where, 1.0f, 1e-4f, 1e5f), r.integer(o, "cells", where, 1, 1, 2048),
+                               r.number(o, "uvOffset", where, 0.0f, -1e6f, 1e6f));
+    } else if (generator == "heightmap") {
+        mesh = makeHeightmapPlane(r.number(o, "halfExtent", where, 4.0f, 1e-4f, 1e5f), r.integer(o, "cells", where, 256, 1, 2048),
+                                  r.number(o, "uvOffset", where, 0.0f, -1e6f, 1e6f));
+    } else if (generator == "sphere") {
+        mesh = makeUvSphere(r.number(o, "radius", where, 1.0f, 1e-4f, 1e5f), r.integer(o, "segments", where, 64, 3, 4096),
+                            r.integer(o, "rings", where, 32, 2, 4096));
+    } else if (generator == "box") {
+        glm::vec3 size = o.contains("size") ? r.vec<3>(o["size"], where + ".size") : glm::vec3(1.0f);
+        if (glm::any(glm::lessThanEqual(size, glm::vec3(0.0f)))) r.fail(where + ".size", "sizes must be positive");
+        MeshBuilder b("box");
+        b.box(glm::vec3(-0.5f * size.x, 0.0f, -0.5f * size.z), glm::vec3(0.5f * size.x, size.y, 0.5f * size.z), glm::vec3(0.0f));
+        mesh = b.finish();
+    } else if (generator == "cylinder") {
+        MeshBuilder b("cylinder");
+        b.cylinder(glm::vec3(0.0f), r.number(o, "radius", where, 0.5f, 1e-4f, 1e5f), r.number(o, "height", where, 1.0f, 1e-4f, 1e5f),
+                   r.integer(o, "segments", where, 32, 3, 4096));
+        mesh = b.finish();
+    } else {
+        r.fail(where + ".generator", "unknown generator '" + generator + "' (known: plane, heightmap, sphere, box, cylinder)");
+    }
+    mesh.name = r.string(o, "name", where, generator);
+    return mesh;
+}
+
+int loadTexture(Scene& scene, const Reader& r, const Json& o, const char* key, const std::string& where, bool srgb) {
+    if (!o.contains(key)) return -1;
+    std::filesystem::path path = r.path(o, key, where);
+    ImageF image;
+    try {
+        image = readImage(path);
+    } catch (const Error& e) {
+        r.fail(where + "." + key, e.what());
+    }
+    TextureData t;
+    t.name = path.filename().string();
+    t.width = image.width;
+    t.height = image.height;
+    t.srgb = srgb;
+    t.rgba.resize(size_t(image.width) * image.height * 4);
+    // Grey maps to RGB and grey+alpha to RGB+A; values stay as stored (sRGB-encoded for colour images).
+    const int n = image.channels;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            float grey = image.at(x, y, 0);
+            float v[4] = {grey, grey, grey, 1.0f};
+            if (n >= 3) for (int c = 0; c < 3; ++c) v[c] = image.at(x, y, c);
+            if (n == 2 || n >= 4) v[3] = image.at(x, y, n == 2 ? 1 : 3);
+            for (int c = 0; c < 4; ++c)
+                t.rgba[(size_t(y) * image.width + x) * 4 + c] = uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f));
+        }
+    scene.textures.push_back(std::move(t));
+    return int(scene.textures.size() - 1);
+}
+
+// Fills or overrides the fields present in `o` (materials of the base scene keep what the file leaves out).
+void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::string& where, Material& m) {
+    r.checkKeys(o, where, {"name", "baseColor", "alpha", "roughness", "metallic", "ndf", "glinty", "glintDensityScale",
+                           "alphaCutoff", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
+                           "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees"});
+    if (o.contains("baseColor")) m.baseColor = r.colour(o["baseColor"], where + ".baseColor");
+    if (o.contains("alpha") && o.contains("roughness")) r.fail(where, "give either alpha or roughness, not both");
+    m.alpha = r.number(o, "alpha", where, m.alpha, 1e-3f, 1.0f);
+    if (o.contains("roughness")) {
+        float roughness = r.number(o, "roughness", where, 0.5f, 0.0f, 1.0f);
+        m.alpha = std::max(roughness * roughness, 1e-3f);
+    }
+    m.metallic = r.number(o, "metallic", where, m.metallic, 0.0f, 1.0f);
+    if (o.contains("ndf")) {
+        std::string ndf = r.string(o, "ndf", where);
+        if (ndf == "ggx") m.ndf = NdfType::Ggx;
+        else if (ndf == "beckmann") m.ndf = NdfType::Beckmann;
+        else r.fail(where + ".ndf", "expected \"ggx\" or \"beckmann\"");
+    }
+    m.glinty = r.boolean(o, "glinty", where, m.glinty);
+    m.glintDensityScale = r.number(o, "glintDensityScale", where, m.glintDensityScale, 0.0f, 1e6f);
+    m.alphaCutoff = r.number(o, "alphaCutoff", where, m.alphaCutoff, -1.0f, 1.0f);
+    if (int t = loadTexture(scene, r, o, "baseColorTexture", where, true); t >= 0) m.baseColorTexture = t;
+    if (int t = loadTexture(scene, r, o, "metallicRoughnessTexture", where, false); t >= 0) m.metallicRoughnessTexture = t;
+    if (int t = loadTexture(scene, r, o, "normalTexture", where, false); t >= 0) m.normalTexture = t;
+    if (int t = loadTexture(scene, r, o, "occlusionTexture", where, false); t >= 0) m.occlusionTexture = t;
+    if (int t = loadTexture(scene, r, o, "glintMaskTexture", where, false); t >= 0) m.glintMaskTexture = t;
+    if (o.contains("uvScale") || o.contains("uvOffset") || o.contains("uvRotationDegrees")) {
+        // Same convention as KHR_texture_transform: uv' = T * R * S * uv.
+        glm::vec2 scale = !o.contains("uvScale") ? glm::vec2(1.0f)
+                          : o["uvScale"].is_number() ? glm::vec2(r.number(o["uvScale"], where + ".uvScale"))
+                                                     : r.vec<2>(o["uvScale"], where + ".uvScale");
+        glm::vec2 offset = o.contains("uvOffset") ? r.vec<2>(o["uvOffset"], where + ".uvOffset") : glm::vec2(0.0f);
+        float rotation = glm::radians(r.number(o, "uvRotationDegrees", where, 0.0f, -3600.0f, 3600.0f));
+        float c = std::cos(rotation), s = std::sin(rotation);
+        glm::mat3 t(1.0f);
+        t[0][0] = scale.x * c;  t[1][0] = scale.y * s;  t[2][0] = offset.x;
+        t[0][1] = -scale.x * s; t[1][1] = scale.y * c;  t[2][1] = offset.y;
+        m.uvTransform = t;
+    }
+}
+
+Light readLight(const Reader& r, const Json& o, const std::string& where) {
+    r.checkKeys(o, where, {"type", "direction", "position", "color", "intensity"});
+    Light light;
+    std::string type = r.string(o, "type", where, "directional");
+    if (type == "directional") {
+        light.type = LightType::Directional;
+        if (!o.contains("direction")) r.fail(where, "a directional light needs \"direction\" (towards the light)");
+        glm::vec3 d = r.vec<3>(o["direction"], where + ".direction");
+        if (glm::length(d) < 1e-6f) r.fail(where + ".direction", "must not be zero");
+        light.vector = glm::normalize(d);
+    } else if (type == "point") {
+        light.type = LightType::Point;
+        if (!o.contains("position")) r.fail(where, "a point light needs \"position\"");
+        light.vector = r.vec<3>(o["position"], where + ".position");
+    } else {
+        r.fail(where + ".type", "expected \"directional\" or \"point\"");
+    }
+    if (o.contains("color")) light.color = r.vec<3>(o["color"], where + ".color");
+    light.intensity = r.number(o, "intensity", where, 1.0f, 0.0f, 1e9f);
+    return light;
+}
+
+Camera readCamera(const Reader& r, const Json& o, const std::string& where) {
+    r.checkKeys(o, where, {"name", "position", "target", "up", "fov", "near"});
+    Camera c;
+    c.name = r.string(o, "name", where);
+    if (c.name.empty()) r.fail(where + ".name", "every camera needs a name");
+    if (!o.contains("position") || !o.contains("target")) r.fail(where, "a camera needs \"position\" and \"target\"");
+    c.position = r.vec<3>(o["position"], where + ".position");
+    c.target = r.vec<3>(o["target"], where + ".target");
+    if (o.contains("up")) c.up = r.vec<3>(o["up"], where + ".up");
+    if (glm::length(c.target - c.position) < 1e-6f) r.fail(where, "position and target coincide");
+    if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-6f) r.fail(where + ".up", "parallel to the view direction");
+    c.verticalFovDegrees = r.number(o, "fov", where, c.verticalFovDegrees, 1.0f, 170.0f);
+    c.nearPlane = r.number(o, "near", where, c.nearPlane, 1e-5f, 1e3f);
+    return c;
+}
+
+// Appends a glTF file's meshes, materials, textures and instances (under `transform`) to the scene.
+void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string& where) {
+    r.checkKeys(o, where, {"gltf", "translation", "rotationDegrees", "scale", "glinty", "glintDensityScale"});
+    if (!o.contains("gltf")) r.fail(where, "a model needs \"gltf\" (a path relative to the scene file)");
+    std::filesystem::path path = r.path(o, "gltf", where);
+    Scene model = loadGltfScene(path);
+    glm::mat4 transform = readTransform(r, o, where);
+    uint32_t meshBase = uint32_t(scene.meshes.size()), materialBase = uint32_t(scene.materials.size());
+    int textureBase = int(scene.textures.size());
+    for (MeshData& mesh : model.meshes) scene.meshes.push_back(std::move(mesh));
+    for (TextureData& texture : model.textures) scene.textures.push_back(std::move(texture));
+    for (Material m : model.materials) {
+        for (int* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture, &m.glintMaskTexture})
+            if (*t >= 0) *t += textureBase;
+        m.glinty = r.boolean(o, "glinty", where, m.glinty);
+        m.glintDensityScale = r.number(o, "glintDensityScale", where, m.glintDensityScale, 0.0f, 1e6f);
+        scene.materials.push_back(m);
+    }
+    for (const Instance& instance : model.instances)
+        scene.instances.push_back({instance.mesh + meshBase, instance.material + materialBase, transform * instance.transform});
+}
+
+uint32_t findByName(const Reader& r, const std::vector<std::string>& names, const Json& o, const char* key, const std::string& where) {
+    std::string name = r.string(o, key, where);
+    for (size_t i = names.size(); i-- > 0;)
+        if (names[i] == name) return uint32_t(i);
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    r.fail(where + "." + key, "no " + std::string(key) + " named '" + name + "' (have: " + known + ")");
+}
+
+}  // namespace
+
+Scene loadSceneFile(const std::filesystem::path& path) {
+    if (!std::filesystem::is_regular_file(path)) throw Error(path.string() + ": scene file not found");
+    Reader r(path);
+    Json doc;
+    try {
+        doc = Json::parse(readTextFile(path));
+    } catch (const Json::parse_error& e) {
+        std::string what = e.what();
+        throw Error(path.string() + ": invalid JSON (" + what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
+    }
+    r.checkKeys(doc, "scene", {"name", "base", "sky", "environment", "meshes", "models", "materials", "instances",
+                               "lights", "cameras", "walkthrough", "description"});
+
+    Scene scene;
+    if (doc.contains("base")) {
+        std::string base = r.string(doc, "base", "scene");
+        if (!isBuiltinScene(base)) {
+            std::string known;
+            for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+            r.fail("base", "unknown generated scene '" + base + "' (known: " + known + ")");
+        }
+        scene = makeBuiltinScene(base);
+    }
+    scene.name = r.string(doc, "name", "scene", path.stem().string());
+    if (doc.contains("sky")) scene.skyColor = r.vec<3>(doc["sky"], "sky");
+    if (doc.contains("environment")) {
+        std::string env = r.string(doc, "environment", "scene");
+        scene.environment = env.empty() || env == "none" ? env : r.path(doc, "environment", "scene").string();
+    }
+
+    auto array = [&](const char* key) -> const Json& {
+        static const Json empty = Json::array();
+        if (!doc.contains(key)) return empty;
+        if (!doc[key].is_array()) r.fail(key, "expected an array");
+        return doc[key];
+    };
+    auto at = [](const char* key, size_t i) { return std::string(key) + "[" + std::to_string(i) + "]"; };
+
+    const Json& models = array("models");
+    for (size_t i = 0; i < models.size(); ++i) mergeModel(scene, r, models[i], at("models", i));
+    const Json& meshes = array("meshes");
+    for (size_t i = 0; i < meshes.size(); ++i) scene.meshes.push_back(generatedMesh(r, meshes[i], at("meshes", i)));
+
+    const Json& materials = array("materials");
+    for (size_t i = 0; i < materials.size(); ++i) {
+        std::string where = at("materials", i);
+        std::string name = r.string(materials[i], "name", where);
+        if (name.empty()) r.fail(where + ".name", "every material needs a name");
+        auto existing = std::find_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) { return m.name == name; });
+        if (existing == scene.materials.end()) {
+            Material m;
+            m.name = name;
+            readMaterial(scene, r, materials[i], where, m);
+            scene.materials.push_back(m);
+        } else {
+            readMaterial(scene, r, materials[i], where, *existing);
+        }
+    }
+
+    std::vector<std::string> meshNames, materialNames;
+    for (const MeshData& m : scene.meshes) meshNames.push_back(m.name);
+    for (const Material& m : scene.materials) materialNames.push_back(m.name);
+    const Json& instances = array("instances");
+    for (size_t i = 0; i < instances.size(); ++i) {
+        std::string where = at("instances", i);
+        r.checkKeys(instances[i], where, {"mesh", "material", "translation", "rotationDegrees", "scale"});
+        Instance instance;
+        instance.mesh = findByName(r, meshNames, instances[i], "mesh", where);
+        instance.material = findByName(r, materialNames, instances[i], "material", where);
+        instance.transform = readTransform(r, instances[i], where);
+        scene.instances.push_back(instance);
+    }
+
+    if (doc.contains("lights")) {
+        scene.lights.clear();
+        const Json& lights = array("lights");
+        for (size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(readLight(r, lights[i], at("lights", i)));
+    }
+    if (doc.contains("cameras")) {
+        scene.cameras.clear();
+        const Json& cameras = array("cameras");
+        for (size_t i = 0; i < cameras.size(); ++i) {
+            Camera c = readCamera(r, cameras[i], at("cameras", i));
+            for (const Camera& other : scene.cameras)
+                if (other.name == c.name) r.fail(at("cameras", i) + ".name", "duplicate camera name '" + c.name + "'");
+            scene.cameras.push_back(c);
+        }
+    }
+    if (doc.contains("walkthrough")) {
+        const Json& order = array("walkthrough");
+        scene.walkthrough.clear();
+        for (size_t i = 0; i < order.size(); ++i) {
+            if (!order[i].is_string()) r.fail(at("walkthrough", i), "expected a camera name");
+            std::string name = order[i].get<std::string>();
+            bool known = std::any_of(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& c) { return c.name == name; });
+            if (!known) r.fail(at("walkthrough", i), "no camera named '" + name + "'");
+            scene.walkthrough.push_back(name);
+        }
+    }
+
+    if (scene.instances.empty()) throw Error(path.string() + ": scene has nothing to render (no base, models or instances)");
+    if (scene.cameras.empty()) throw Error(path.string() + ": scene has no camera");
+    return scene;
+}
+
+}  // namespace glimmer
