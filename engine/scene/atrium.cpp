@@ -163,10 +163,10 @@ void balustrade(MeshBuilder& stone, const Side& side) {
 void drape(MeshBuilder& cloth, const Side& side, int bay, float phase) {
     const float width = 2.0f, top = 7.7f, length = 2.9f, period = 0.32f;
     float centre = (float(bay) + 0.5f) * kBay;
-    cloth.grid(48, 28, [&](float s, float t) {
+    cloth.grid(64, 28, [&](float s, float t) {
         float a = centre - 0.5f * width + s * width;
-        float y = top - t * (length + 0.25f * std::sin(kPi * s));
-        float depth = (0.025f + 0.07f * t) * std::sin(2.0f * kPi * s * width / period + phase);
+        float y = top - t * (length + 0.12f * std::sin(kPi * s));
+        float depth = (0.02f + 0.035f * t) * std::sin(2.0f * kPi * s * width / period + phase);
         return side.at(a, y, 0.5f * kWall + 0.2f + depth + 0.08f * t);
     });
 }
@@ -331,7 +331,7 @@ Scene makeAtriumScene() {
     std::vector<glm::vec2> vaseProfile;
     for (int i = 0; i <= 40; ++i) {
         float t = float(i) / 40.0f, y = 1.2f * t;
-        float r = 0.13f + 0.22f * std::pow(std::sin(kPi * std::min(t / 0.88f, 1.0f)), 1.3f) + 0.05f * std::max(0.0f, (t - 0.88f) / 0.12f);
+        float r = 0.13f + 0.22f * std::pow(std::max(0.0f, std::sin(kPi * std::min(t / 0.88f, 1.0f))), 1.3f) + 0.05f * std::max(0.0f, (t - 0.88f) / 0.12f);
         vaseProfile.push_back({r, y});
     }
     MeshBuilder vase("vase");

@@ -461,6 +461,20 @@ private:
         }
         for (glm::vec3& normal : mesh.normals) normal = glm::length(normal) > 1e-20f ? glm::normalize(normal) : glm::vec3(0, 1, 0);
         if (mesh.uvs.empty()) mesh.uvs.assign(n, glm::vec2(0.0f));
+        if (!mesh.tangents.empty()) {
+            // Authored tangents are often not quite orthogonal to the normals (older exporters): Gram-Schmidt
+            // them, keep the handedness, and regenerate the mesh's frames if any tangent is unusable.
+            for (size_t v = 0; v < n && !mesh.tangents.empty(); ++v) {
+                glm::vec3 normal = mesh.normals[v], t = glm::vec3(mesh.tangents[v]);
+                t -= normal * glm::dot(normal, t);
+                if (!(glm::dot(t, t) > 1e-12f)) {
+                    warnings_.add("mesh " + std::to_string(meshIndex) + " has degenerate TANGENTs; regenerated from UVs");
+                    mesh.tangents.clear();
+                    break;
+                }
+                mesh.tangents[v] = glm::vec4(glm::normalize(t), mesh.tangents[v].w < 0.0f ? -1.0f : 1.0f);
+            }
+        }
         if (mesh.tangents.empty()) generateTangents(mesh);
         return mesh;
     }

@@ -82,20 +82,20 @@ void MeshBuilder::grid(int cellsS, int cellsT, const std::function<glm::vec3(flo
     std::vector<glm::vec3> p(size_t(ns) * nt);
     for (int j = 0; j < nt; ++j)
         for (int i = 0; i < ns; ++i) p[size_t(j) * ns + i] = surface(float(i) / cellsS, float(j) / cellsT);
-    // u: arc length along each row from its first vertex; v: arc length down the middle column, so rows stay
-    // level in v and lengths along both directions are measured on the surface.
-    std::vector<float> v(size_t(nt), 0.0f);
-    int mid = cellsS / 2;
-    for (int j = 1; j < nt; ++j) v[size_t(j)] = v[size_t(j - 1)] + glm::length(p[size_t(j) * ns + mid] - p[size_t(j - 1) * ns + mid]);
+    // u: arc length along each row from its first vertex; v: arc length along each column from its first
+    // vertex. Both are measured on the surface, so lengths along the grid lines are exact and areas are exact
+    // where the grid lines cross at right angles.
+    std::vector<float> v(size_t(ns), 0.0f);
     for (int j = 0; j < nt; ++j) {
         float u = 0.0f;
         for (int i = 0; i < ns; ++i) {
             if (i > 0) u += glm::length(p[size_t(j) * ns + i] - p[size_t(j) * ns + i - 1]);
+            if (j > 0) v[size_t(i)] += glm::length(p[size_t(j) * ns + i] - p[size_t(j - 1) * ns + i]);
             glm::vec3 ds = p[size_t(j) * ns + std::min(i + 1, ns - 1)] - p[size_t(j) * ns + std::max(i - 1, 0)];
             glm::vec3 dt = p[size_t(std::min(j + 1, nt - 1)) * ns + i] - p[size_t(std::max(j - 1, 0)) * ns + i];
             glm::vec3 n = glm::cross(dt, ds);
             if (glm::dot(n, n) < 1e-20f) n = glm::vec3(0, 1, 0);
-            vertex(p[size_t(j) * ns + i], n, glm::vec2(u, v[size_t(j)]) + uvOffset);
+            vertex(p[size_t(j) * ns + i], n, glm::vec2(u, v[size_t(i)]) + uvOffset);
         }
     }
     for (int j = 0; j < cellsT; ++j)

@@ -39,7 +39,7 @@ public:
     // v = arc length along the profile.
     void lathe(const glm::vec3& base, const std::vector<glm::vec2>& profile, int segments,
                glm::vec3 seamDirection = {0, 0, -1});
-    // A regular grid over (s, t) in [0,1]^2 mapped through `surface`, with UVs from arc length along rows
+    // A regular grid over (s, t) in [0,1]^2 mapped through `surface`, with UVs from arc lengths along its rows
     // (u) and columns (v) measured on the surface itself. Normals come from the surface's partial derivatives.
     void grid(int cellsS, int cellsT, const std::function<glm::vec3(float, float)>& surface, glm::vec2 uvOffset = {0, 0});
 

@@ -90,7 +90,7 @@ TextureData makeAshlarTexture(int size, float period) {
         int wrappedBlock = ((block % int(period / blockLength)) + int(period / blockLength)) % int(period / blockLength);
         float tint = random01(wrappedBlock, course % courses, 7u);
         float grain = fractalNoise(s, t, 16, 4, 11u);
-        glm::vec3 stone = glm::mix(glm::vec3(0.50f, 0.40f, 0.28f), glm::vec3(0.62f, 0.52f, 0.38f), tint);
+        glm::vec3 stone = glm::mix(glm::vec3(0.40f, 0.30f, 0.19f), glm::vec3(0.52f, 0.41f, 0.27f), tint);
         stone *= 0.8f + 0.4f * grain;
         glm::vec3 mortar(0.30f, 0.28f, 0.25f);
         return glm::mix(mortar, stone, mask);
@@ -100,7 +100,7 @@ TextureData makeAshlarTexture(int size, float period) {
 TextureData makeStoneTexture(int size, float period) {
     return fill("stone", size, period, [](float, float, float s, float t) {
         float broad = fractalNoise(s, t, 4, 3, 21u), fine = fractalNoise(s, t, 32, 3, 23u);
-        glm::vec3 base = glm::mix(glm::vec3(0.48f, 0.43f, 0.35f), glm::vec3(0.63f, 0.57f, 0.47f), broad);
+        glm::vec3 base = glm::mix(glm::vec3(0.36f, 0.30f, 0.22f), glm::vec3(0.50f, 0.43f, 0.32f), broad);
         return base * (0.85f + 0.3f * fine);
     });
 }

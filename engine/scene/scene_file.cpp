@@ -258,7 +258,12 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
     r.checkKeys(o, where, {"gltf", "translation", "rotationDegrees", "scale", "glinty", "glintDensityScale"});
     if (!o.contains("gltf")) r.fail(where, "a model needs \"gltf\" (a path relative to the scene file)");
     std::filesystem::path path = r.path(o, "gltf", where);
-    Scene model = loadGltfScene(path);
+    Scene model;
+    try {
+        model = loadGltfScene(path);
+    } catch (const Error& e) {
+        r.fail(where + ".gltf", e.what());
+    }
     glm::mat4 transform = readTransform(r, o, where);
     uint32_t meshBase = uint32_t(scene.meshes.size()), materialBase = uint32_t(scene.materials.size());
     int textureBase = int(scene.textures.size());
