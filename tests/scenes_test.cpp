@@ -24,6 +24,7 @@
 #include "scene/gltf_loader.h"
 #include "scene/scene_file.h"
 #include "scene/scene_loader.h"
+#include "support/golden.h"
 
 namespace fs = std::filesystem;
 using glimmer::Scene;
@@ -540,4 +541,20 @@ TEST(ScenesAtrium, GrazingCameraReachesHighFootprintAnisotropy) {
     EXPECT_GT(floorPixels, size_t(256 * 256 / 4)) << "the grazing view is mostly floor";
     EXPECT_GT(maxRatio, 16.0f);
     EXPECT_GT(above16, size_t(256)) << "more than a line of pixels";
+}
+
+// Golden images of every atrium camera at 256x256 (smooth method), through the lead's golden framework
+// (tests/support/golden.h; GLIMMER_UPDATE_GOLDEN=1 rewrites tests/golden/ref/atrium_<camera>.png).
+TEST(ScenesAtrium, CamerasMatchGoldenImages) {
+    const Scene& s = atriumScene();
+    glimmer::RenderRequest r = request("atrium", s.cameras.front().name);
+    glimmer::OffscreenSession session(r);
+    for (const glimmer::Camera& camera : s.cameras) {
+        SCOPED_TRACE(camera.name);
+        r.camera = camera.name;
+        glimmer::RenderResult result = session.render(r);
+        glimmer::test::GoldenComparison comparison =
+            glimmer::test::compareWithGolden("atrium_" + camera.name, result.display, result.width, result.height);
+        EXPECT_TRUE(comparison.passed) << comparison.message;
+    }
 }

@@ -369,9 +369,9 @@ Scene makeAtriumScene() {
     // Fallback camera and sun; content/atrium.json replaces them with the named walkthrough cameras and lights.
     Camera overview;
     overview.name = "overview";
-    overview.position = {15.0f, 13.0f, 9.5f};
-    overview.target = {-2.0f, 1.0f, 0.0f};
-    overview.verticalFovDegrees = 55.0f;
+    overview.position = {11.5f, 13.5f, 0.0f};   // above the east cornice, looking down the court
+    overview.target = {-6.0f, 0.0f, 0.0f};
+    overview.verticalFovDegrees = 62.0f;
     scene.cameras.push_back(overview);
     scene.lights.push_back({LightType::Directional, glm::normalize(glm::vec3(0.35f, 0.8f, 0.45f)), {1.0f, 0.95f, 0.86f}, 2.6f});
     return scene;
