@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -58,8 +59,15 @@ struct ExpectedCounts {
 };
 
 ExpectedCounts expectedFromJson(const fs::path& file) {
-    std::ifstream in(file);
-    nlohmann::json g = nlohmann::json::parse(in);
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (file.extension() == ".glb") {
+        // GLB: 12-byte header, then the JSON chunk (uint32 length, "JSON", text).
+        uint32_t length = 0;
+        if (bytes.size() >= 20) std::memcpy(&length, bytes.data() + 12, 4);
+        bytes = bytes.size() >= 20 + size_t(length) ? bytes.substr(20, length) : std::string();
+    }
+    nlohmann::json g = nlohmann::json::parse(bytes);
     ExpectedCounts e;
     auto isTriangles = [](const nlohmann::json& p) { return !p.contains("mode") || p["mode"].get<int>() == 4; };
     auto attribute = [](const nlohmann::json& p, const char* name) {
@@ -225,6 +233,24 @@ TEST(ScenesGltf, MissingOrShortBufferGivesOneLineErrorNamingTheFile) {
     expectOneLineErrorNaming([] { glimmer::loadScene(testData("bad_buffer.gltf").string()); }, "bad_buffer.gltf");
     expectOneLineErrorNaming([] { glimmer::loadScene(testData("short_buffer.gltf").string()); }, "short_buffer.gltf");
     expectOneLineErrorNaming([] { glimmer::loadScene(testData("no_such_file.gltf").string()); }, "no_such_file.gltf");
+}
+
+// Extensions the engine does not implement are ignored with a warning, even when marked required, as long as
+// the model still renders meaningfully (here: a required material extension and an image tinygltf cannot
+// decode, as with KHR_texture_basisu); geometry compression cannot be ignored and is refused by name.
+TEST(ScenesGltf, UnsupportedExtensionsAreIgnoredOrRefusedByName) {
+    Scene scene = glimmer::loadGltfScene(testData("undecodable_image.gltf"));
+    EXPECT_EQ(scene.triangleCount(), 4u);
+    ASSERT_EQ(scene.materials.size(), 3u);
+    for (const glimmer::Material& m : scene.materials) EXPECT_EQ(m.baseColorTexture, -1) << m.name;
+    try {
+        glimmer::loadGltfScene(testData("requires_draco.gltf"));
+        ADD_FAILURE() << "a required KHR_draco_mesh_compression must be refused";
+    } catch (const glimmer::Error& e) {
+        std::string message = e.what();
+        EXPECT_NE(message.find("requires_draco.gltf"), std::string::npos) << message;
+        EXPECT_NE(message.find("KHR_draco_mesh_compression"), std::string::npos) << message;
+    }
 }
 
 TEST(ScenesGltf, TextureTransformMatrixFollowsTheExtension) {

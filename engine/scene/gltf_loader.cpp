@@ -283,10 +283,12 @@ private:
         if (auto it = textureCache_.find(key); it != textureCache_.end()) return it->second;
         const tinygltf::Image& image = element(model_.images, source, "image", file_);
         TextureData data;
-        data.name = image.name.empty() ? image.uri : image.name;
+        data.name = !image.name.empty() ? image.name
+                    : !image.uri.empty() && image.uri.rfind("data:", 0) != 0 ? image.uri
+                                                                             : "image " + std::to_string(source);
         data.srgb = srgb;
         if (!toRgba8(image, data.rgba)) {
-            warnings_.add("image '" + data.name + "' could not be decoded; textures using it are ignored");
+            warnings_.add(data.name + " has no decoded pixels; textures using it are ignored");
             textureCache_[key] = -1;
             return -1;
         }
@@ -566,12 +568,27 @@ private:
     int defaultMaterial_ = -1;
 };
 
+// Decodes with tinygltf's own loader, but turns a failure into a warning (the image stays empty and textures
+// using it are ignored) instead of failing the whole file: e.g. KTX2 / WebP images of KHR_texture_basisu or
+// EXT_texture_webp, which tinygltf cannot decode, leave a model that still renders meaningfully.
+bool tolerantImageLoader(tinygltf::Image* image, const int index, std::string* error, std::string* warning, int width,
+                         int height, const unsigned char* bytes, int size, void*) {
+    std::string decodeError;
+    if (tinygltf::LoadImageData(image, index, &decodeError, warning, width, height, bytes, size, nullptr)) return true;
+    if (warning) *warning += "image " + std::to_string(index) + " could not be decoded (" + firstLine(decodeError) + ")\n";
+    image->width = image->height = 0;
+    image->image.clear();
+    (void)error;
+    return true;
+}
+
 }  // namespace
 
 Scene loadGltfScene(const std::filesystem::path& path) {
     const std::string file = path.string();
     if (!std::filesystem::is_regular_file(path)) throw Error(file + ": glTF file not found");
     tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(tolerantImageLoader, nullptr);
     tinygltf::Model model;
     std::string error, warning;
     std::string ext = path.extension().string();
