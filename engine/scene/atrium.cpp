@@ -9,6 +9,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
 #include "scene/procedural_textures.h"
+#include "scene/uv_transform.h"
 
 namespace glimmer {
 namespace {
@@ -235,12 +236,6 @@ Material material(const std::string& name, glm::vec3 colour, float alpha, float 
     return m;
 }
 
-glm::mat3 uvScale(float s) {
-    glm::mat3 m(1.0f);
-    m[0][0] = m[1][1] = s;
-    return m;
-}
-
 }  // namespace
 
 Scene makeAtriumScene() {
@@ -263,7 +258,7 @@ Scene makeAtriumScene() {
     scene.materials[Stone].baseColorTexture = 1;
     scene.materials[FloorTiles] = material("floor_tiles", glm::vec3(1.0f), 0.25f, 0.0f, false);
     scene.materials[FloorTiles].baseColorTexture = 2;
-    for (uint32_t m : {Ashlar, Stone, FloorTiles}) scene.materials[m].uvTransform = uvScale(1.0f / texturePeriod);
+    for (uint32_t m : {Ashlar, Stone, FloorTiles}) scene.materials[m].uvTransform = uvTransformMatrix(glm::vec2(0.0f), 0.0f, glm::vec2(1.0f / texturePeriod));
     scene.materials[Snow] = material("snow", {0.9f, 0.92f, 0.95f}, 0.3f, 0.3f, true);
     scene.materials[CarPaintRed] = material("car_paint_red", {0.55f, 0.03f, 0.03f}, 0.2f, 0.8f, true);
     scene.materials[CarPaintBlue] = material("car_paint_blue", {0.05f, 0.15f, 0.6f}, 0.2f, 0.8f, true);

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/uv_transform.h"
 
 namespace glimmer {
 namespace {
@@ -208,7 +209,7 @@ bool toRgba8(const tinygltf::Image& image, std::vector<uint8_t>& rgba) {
     return true;
 }
 
-// KHR_texture_transform as a 3x3 matrix on homogeneous UV: T * R * S (the extension's specification).
+// KHR_texture_transform's offset, rotation and scale as a matrix (uv_transform.h).
 glm::mat3 textureTransform(const tinygltf::Value& ext) {
     auto number = [](const tinygltf::Value& v, double fallback) { return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : fallback; };
     glm::vec2 offset(0.0f), scale(1.0f);
@@ -218,12 +219,7 @@ glm::mat3 textureTransform(const tinygltf::Value& ext) {
     if (ext.Has("scale") && ext.Get("scale").ArrayLen() == 2)
         scale = {float(number(ext.Get("scale").Get(0), 1)), float(number(ext.Get("scale").Get(1), 1))};
     if (ext.Has("rotation")) rotation = float(number(ext.Get("rotation"), 0));
-    float c = std::cos(rotation), s = std::sin(rotation);
-    // Rows of T*R*S: [sx c, sy s, ox], [-sx s, sy c, oy], [0 0 1]; glm is column-major (m[column][row]).
-    glm::mat3 m(1.0f);
-    m[0][0] = scale.x * c;  m[1][0] = scale.y * s;  m[2][0] = offset.x;
-    m[0][1] = -scale.x * s; m[1][1] = scale.y * c;  m[2][1] = offset.y;
-    return m;
+    return uvTransformMatrix(offset, rotation, scale);
 }
 
 bool sameTransform(const glm::mat3& a, const glm::mat3& b) {

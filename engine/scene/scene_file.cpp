@@ -14,6 +14,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/mesh_builder.h"
+#include "scene/uv_transform.h"
 
 namespace glimmer {
 namespace {
@@ -207,11 +208,7 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
                                                      : r.vec<2>(o["uvScale"], where + ".uvScale");
         glm::vec2 offset = o.contains("uvOffset") ? r.vec<2>(o["uvOffset"], where + ".uvOffset") : glm::vec2(0.0f);
         float rotation = glm::radians(r.number(o, "uvRotationDegrees", where, 0.0f, -3600.0f, 3600.0f));
-        float c = std::cos(rotation), s = std::sin(rotation);
-        glm::mat3 t(1.0f);
-        t[0][0] = scale.x * c;  t[1][0] = scale.y * s;  t[2][0] = offset.x;
-        t[0][1] = -scale.x * s; t[1][1] = scale.y * c;  t[2][1] = offset.y;
-        m.uvTransform = t;
+        m.uvTransform = uvTransformMatrix(offset, rotation, scale);
     }
 }
 
