@@ -334,7 +334,7 @@ Scene makeAtriumScene() {
     std::vector<glm::vec2> eggProfile;
     for (int i = 0; i <= 48; ++i) {
         float theta = kPi * float(i) / 48.0f;
-        eggProfile.push_back({0.36f * std::sin(theta) * (1.0f - 0.12f * std::cos(theta)), 0.55f * (1.0f - std::cos(theta))});
+        eggProfile.push_back({0.36f * std::sin(theta) * (1.0f + 0.12f * std::cos(theta)), 0.55f * (1.0f - std::cos(theta))});
     }
     eggProfile.front().x = eggProfile.back().x = 0.0f;
     MeshBuilder egg("egg");
