@@ -358,6 +358,7 @@ TEST(ScenesFile, BaseOverridesAndAdditions) {
     fs::path file = writeTemp("file_test.json", R"({
       "base": "plane90",
       "sky": [0.1, 0.2, 0.3],
+      "environment": "maps/sky.hdr",
       "meshes": [{"name": "ball", "generator": "sphere", "radius": 0.5, "segments": 16, "rings": 8},
                  {"name": "block", "generator": "box", "size": [1, 2, 3]}],
       "models": [{"gltf": ")" + testData("texture_transform.gltf").string() + R"(", "translation": [0, 5, 0]}],
@@ -374,6 +375,7 @@ TEST(ScenesFile, BaseOverridesAndAdditions) {
     Scene s = glimmer::loadScene(file.string());
     EXPECT_EQ(s.name, "file_test");
     EXPECT_EQ(s.skyColor, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(fs::path(s.environment), file.parent_path() / "maps" / "sky.hdr") << "relative to the scene file";
     // plane90 (1 mesh, 1 material) + 2 generated meshes + the glTF (2 meshes, 3 materials, 2 instances).
     ASSERT_EQ(s.meshes.size(), base.meshes.size() + 2 + 2);
     ASSERT_EQ(s.materials.size(), base.materials.size() + 3 + 1);
@@ -429,6 +431,12 @@ TEST(ScenesFile, NamesResolveToContentFilesThenBuiltins) {
     EXPECT_EQ(glimmer::loadScene("plane90").name, "plane90") << "generated scenes keep working";
     std::vector<std::string> content = glimmer::contentSceneNames();
     EXPECT_NE(std::find(content.begin(), content.end(), "atrium"), content.end());
+    // "atrium" is content/atrium.json on top of the generator: same geometry, the file's cameras and lights.
+    Scene generated = glimmer::makeBuiltinScene("atrium"), described = glimmer::loadScene("atrium");
+    EXPECT_EQ(generated.triangleCount(), described.triangleCount());
+    EXPECT_EQ(generated.materials.size(), described.materials.size());
+    EXPECT_EQ(generated.cameras.size(), 1u);
+    EXPECT_GT(described.cameras.size(), generated.cameras.size());
     EXPECT_THROW(glimmer::loadScene("no_such_scene"), glimmer::UsageError);
     EXPECT_THROW(glimmer::loadScene("scene.obj"), glimmer::UsageError);
 }

@@ -32,8 +32,7 @@ std::string firstLine(const std::string& text) {
 // extension without which the geometry cannot be read at all is refused (rendering would not be meaningful).
 enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
-    static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
-                                                    "KHR_materials_emissive_strength"};
+    static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
