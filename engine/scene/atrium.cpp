@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
 #include "scene/procedural_textures.h"
 #include "scene/uv_transform.h"
@@ -358,7 +357,17 @@ Scene makeAtriumScene() {
                                    glm::translate(identity, glm::vec3(vaseSpots[i].x, 0.5f, vaseSpots[i].y))});
     scene.instances.push_back({eggMesh, CarPaintBlue, glm::translate(identity, glm::vec3(eggSpots[0].x, 1.0f, eggSpots[0].y))});
     scene.instances.push_back({eggMesh, CarPaintRed, glm::translate(identity, glm::vec3(eggSpots[1].x, 1.0f, eggSpots[1].y))});
-    uint32_t sphereMesh = addMesh(makeUvSphere(0.7f, 96, 48));
+    // The sphere as a lathe (u = local circumference, v = arc length) rather than makeUvSphere, whose u = r phi
+    // stretches towards the poles.
+    std::vector<glm::vec2> sphereProfile;
+    for (int i = 0; i <= 48; ++i) {
+        float theta = kPi * float(i) / 48.0f;
+        sphereProfile.push_back({0.7f * std::sin(theta), -0.7f * std::cos(theta)});
+    }
+    sphereProfile.front().x = sphereProfile.back().x = 0.0f;
+    MeshBuilder sphere("sphere");
+    sphere.lathe({0, 0, 0}, sphereProfile, 96);
+    uint32_t sphereMesh = addMesh(sphere.finish());
     scene.instances.push_back({sphereMesh, CarPaintBlue, glm::translate(identity, sphereCentre)});
 
     // Fallback camera and sun; content/atrium.json replaces them with the named walkthrough cameras and lights.
