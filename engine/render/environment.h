@@ -63,7 +63,7 @@ class Environment {
 public:
     static constexpr int kFaceSize = 256;        // source cube face (level 0 of every map)
     static constexpr int kPrefilterLevels = 6;   // 256 .. 8; level k holds roughness sqrt(alpha) = k / 5
-    static constexpr int kBrdfLutSize = 128;
+    static constexpr int kBrdfLutSize = 64;
     static constexpr int kIrradianceFace = 32;   // source mip projected onto SH
 
     explicit Environment(std::filesystem::path shaderRoot);
