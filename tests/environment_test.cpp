@@ -70,8 +70,10 @@ ImageF syntheticEquirect(int width, int height) {
     return image;
 }
 
+// One file per test: ctest runs tests in parallel processes.
 fs::path syntheticExr() {
-    fs::path path = outputDir() / "synthetic_env.exr";
+    std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::path path = outputDir() / ("synthetic_env_" + test + ".exr");
     writeImage(path, syntheticEquirect(512, 256));
     return path;
 }
@@ -345,12 +347,14 @@ TEST(Environment, ShIrradianceMatchesQuadrature) {
 
 // The full lighting pass on a smooth metal sphere (f0 = 1, no lights) under the synthetic map, at sampled pixels.
 // (a) Against CPU split sum: CPU-prefiltered radiance at the mirror direction times the quadrature table value,
-//     with alpha on a prefiltered level (no blending between levels): 5% per pixel (the prefilter's 4% plus table
+//     with alpha on a prefiltered level (alpha = 0.16; no blending between levels): 5% per pixel (the prefilter's 4% plus table
 //     interpolation; measured worst 2.0% GGX, 3.2% Beckmann) and 1.5% on average.
 // (b) Against the true reflection integral (Cook-Torrance with Smith G and Schlick F by quadrature over the cube):
 //     split-sum is an approximation (it assumes n = v = r for the lobe's shape and ignores its stretching at
 //     grazing angles), so the tolerance is looser and stated on the distribution over pixels with n.v >= 0.3:
 //     median 4%, 90th percentile 12% (measured: median 1.5-1.7%, p90 7-8%, max 11% for GGX and Beckmann).
+//     (b) also runs at alpha = 0.25, between two levels: the lookup blends the alpha = 0.16 and 0.36 lobes, which
+//     is not the alpha = 0.25 lobe, so there: median 6%, p90 18% (measured GGX 2.8% / 7.9%, Beckmann 4.1% / 12.3%).
 TEST(Environment, SplitSumShadingMatchesCpu) {
     SphereRig rig;
     rig.scene.environment = syntheticExr().string();
@@ -359,8 +363,9 @@ TEST(Environment, SplitSumShadingMatchesCpu) {
     envref::CubeImage source = readCubeLevel(rig.renderer->environment().sourceCube(), 1, Environment::kFaceSize);
     RenderSettings normalView;
     normalView.debugView = 2;
-    for (NdfType ndf : {NdfType::Ggx, NdfType::Beckmann}) {
-        float alpha = Environment::levelAlpha(2);   // 0.16
+    for (NdfType ndf : {NdfType::Ggx, NdfType::Beckmann})
+    for (float alpha : {Environment::levelAlpha(2), 0.25f}) {
+        bool onLevel = alpha == Environment::levelAlpha(2);
         rig.material().alpha = alpha;
         rig.material().ndf = ndf;
         std::vector<float> hdr = rig.render(RenderSettings{});
@@ -378,7 +383,7 @@ TEST(Environment, SplitSumShadingMatchesCpu) {
                 glm::dvec3 value = pixel(hdr, rig.size, x, y);
                 glm::dvec2 ab = envref::splitSumReference(nDotV, alpha, int(ndf));
                 glm::dvec3 split = envref::prefilteredRadianceReference(source, glm::vec3(r), alpha, int(ndf)) * (ab.x + ab.y);
-                double e = relativeError(value, split);
+                double e = onLevel ? relativeError(value, split) : 0.0;
                 worstSplit = std::max(worstSplit, e);
                 sumSplit += e;
                 EXPECT_LT(e, 0.05) << "split sum, ndf " << int(ndf) << " pixel " << x << "," << y;
@@ -390,10 +395,10 @@ TEST(Environment, SplitSumShadingMatchesCpu) {
         EXPECT_LT(sumSplit / trueErrors.size(), 0.015);
         std::sort(trueErrors.begin(), trueErrors.end());
         double median = trueErrors[trueErrors.size() / 2], p90 = trueErrors[trueErrors.size() * 9 / 10];
-        std::printf("ndf %d: split sum vs CPU split sum worst %.4f; vs true integral median %.4f p90 %.4f max %.4f\n",
-                    int(ndf), worstSplit, median, p90, trueErrors.back());
-        EXPECT_LT(median, 0.04);
-        EXPECT_LT(p90, 0.12);
+        std::printf("ndf %d alpha %.2f: split sum vs CPU split sum worst %.4f; vs true integral median %.4f p90 %.4f "
+                    "max %.4f\n", int(ndf), alpha, worstSplit, median, p90, trueErrors.back());
+        EXPECT_LT(median, onLevel ? 0.04 : 0.06);
+        EXPECT_LT(p90, onLevel ? 0.12 : 0.18);
     }
 }
 
