@@ -208,11 +208,17 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
         size_t bad = 0;
         for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
             for (int c = 0; c < 3; ++c) {
-                float v = image.pixels[p * image.channels + std::min(c, image.channels - 1)];
+                // Grey (or grey + alpha) images give the same value to R, G and B.
+                float v = image.pixels[p * image.channels + (image.channels >= 3 ? c : 0)];
                 if (!std::isfinite(v) || v < 0.0f) { v = 0.0f; ++bad; }
                 rgba[p * 4 + c] = v;
             }
         if (bad) log::warn(spec.path.string(), ": ", bad, " negative or non-finite values set to 0");
+        GLint maxSize = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+        if (image.width > maxSize || image.height > maxSize)
+            throw Error(spec.path.string() + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                        " exceeds the GL texture size limit " + std::to_string(maxSize));
         equirect = gl::createTexture2D(GL_RGBA32F, image.width, image.height, 1);
         glTextureSubImage2D(equirect.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rgba.data());
         glTextureParameteri(equirect.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
