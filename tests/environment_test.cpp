@@ -245,8 +245,8 @@ TEST(Environment, WhiteFurnaceReturnsTheEnvironmentRadiance) {
 
 // A white metal (f0 = 1) under a constant environment reflects L times the lobe's directional albedo A + B:
 // the split sum is exact for a constant environment, so this checks the table lookup in the lighting pass against
-// the quadrature at each pixel's n.v. Tolerance 2%: table interpolation between texels and the Hammersley
-// estimate; pixels with n.v < 0.15 (the last pixel or two of the silhouette) are excluded since the G-buffer's
+// the quadrature at each pixel's n.v. Tolerance 1%: table interpolation between texels and the Hammersley
+// estimate (measured worst 0.17%); pixels with n.v < 0.15 (the last pixel or two of the silhouette) are excluded since the G-buffer's
 // interpolated normals differ there from the tessellated geometry's.
 TEST(Environment, WhiteMetalReflectsTheLobeAlbedo) {
     SphereRig rig;
@@ -261,6 +261,7 @@ TEST(Environment, WhiteMetalReflectsTheLobeAlbedo) {
             std::vector<float> hdr = rig.render(RenderSettings{});
             std::vector<float> normals = rig.render(normalView);
             int checked = 0;
+            double worst = 0.0;
             for (int y = 4; y < rig.size; y += 9)
                 for (int x = 4; x < rig.size; x += 9) {
                     if (!isSurface(hdr, rig.size, x, y)) continue;
@@ -269,11 +270,14 @@ TEST(Environment, WhiteMetalReflectsTheLobeAlbedo) {
                     if (nDotV < 0.15) continue;
                     glm::dvec2 ab = envref::splitSumReference(nDotV, alpha, int(ndf));
                     double expected = ab.x + ab.y;
-                    EXPECT_NEAR(pixel(hdr, rig.size, x, y).y, expected, 0.02 * expected)
+                    worst = std::max(worst, std::abs(pixel(hdr, rig.size, x, y).y - expected) / expected);
+                    EXPECT_NEAR(pixel(hdr, rig.size, x, y).y, expected, 0.01 * expected)
                         << "ndf " << int(ndf) << " alpha " << alpha << " n.v " << nDotV;
                     ++checked;
                 }
             EXPECT_GT(checked, 50);
+            std::printf("white metal ndf %d alpha %.2f: worst relative error vs quadrature albedo %.4f\n", int(ndf),
+                        alpha, worst);
         }
 }
 
@@ -516,6 +520,29 @@ TEST(Environment, BadEnvFileGivesOneLineError) {
         EXPECT_NE(lines[0].find("--env"), std::string::npos) << lines[0];
         EXPECT_NE(lines[0].find(bad.string()), std::string::npos) << lines[0];
     }
+}
+
+// Every shared HDR map loads, converts and lights the sphere without NaN/Inf (skipped without ../shared/assets).
+TEST(Environment, SharedMapsRenderFinite) {
+    fs::path dir = sharedAssets() / "hdri";
+    if (!fs::is_directory(dir)) GTEST_SKIP() << dir << " not found";
+    SphereRig rig;
+    rig.size = 64;
+    rig.material().metallic = 1.0f;
+    rig.material().alpha = 0.1f;
+    int maps = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        if (entry.path().extension() != ".hdr" && entry.path().extension() != ".exr") continue;
+        rig.scene.environment = entry.path().string();
+        std::vector<float> hdr = rig.render(RenderSettings{});
+        EXPECT_EQ(nonFinite(hdr), 0u) << entry.path();
+        EXPECT_TRUE(rig.renderer->environment().enabled());
+        double sum = 0.0;
+        for (size_t i = 0; i < hdr.size(); i += 4) sum += hdr[i + 1];
+        EXPECT_GT(sum, 0.0) << entry.path();
+        ++maps;
+    }
+    EXPECT_GT(maps, 0);
 }
 
 }  // namespace glimmer
