@@ -107,7 +107,9 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     std::ostringstream key;
     switch (spec.kind) {
         case EnvironmentSpec::Kind::None: key << "none"; break;
-        case EnvironmentSpec::Kind::Constant: key << "constant " << spec.constant.x << ' ' << spec.constant.y << ' ' << spec.constant.z; break;
+        case EnvironmentSpec::Kind::Constant:
+            key << "constant " << spec.constant.x << ' ' << spec.constant.y << ' ' << spec.constant.z;
+            break;
         case EnvironmentSpec::Kind::File: key << "file " << spec.path.string(); break;
         case EnvironmentSpec::Kind::Procedural:
             key << "procedural " << sun.analytic << ' ' << sun.direction.x << ' ' << sun.direction.y << ' '
@@ -127,7 +129,8 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     }
 
     if (spec.kind == EnvironmentSpec::Kind::File) {
-        // Read before touching GL state, so a bad file leaves the previous environment in place.
+        // Fail early on a missing file. buildMaps decodes the image before it replaces any texture, so a bad file
+        // leaves the previous environment in place.
         std::error_code ec;
         if (!std::filesystem::is_regular_file(spec.path, ec))
             throw Error(flag + ": " + spec.path.string() + ": file not found");
