@@ -141,7 +141,9 @@ glm::dvec3 pixel(const std::vector<float>& hdr, int size, int x, int y) {
     const float* p = &hdr[(size_t(y) * size + x) * 4];
     return {p[0], p[1], p[2]};
 }
-bool isSurface(const std::vector<float>& hdr, int size, int x, int y) { return hdr[(size_t(y) * size + x) * 4 + 3] > 0.5f; }
+bool isSurface(const std::vector<float>& hdr, int size, int x, int y) {
+    return hdr[(size_t(y) * size + x) * 4 + 3] > 0.5f;   // the lighting pass writes alpha 0 on the sky
+}
 
 size_t nonFinite(const std::vector<float>& hdr) {
     return size_t(std::count_if(hdr.begin(), hdr.end(), [](float v) { return !std::isfinite(v); }));
@@ -246,8 +248,8 @@ TEST(Environment, WhiteFurnaceReturnsTheEnvironmentRadiance) {
 // A white metal (f0 = 1) under a constant environment reflects L times the lobe's directional albedo A + B:
 // the split sum is exact for a constant environment, so this checks the table lookup in the lighting pass against
 // the quadrature at each pixel's n.v. Tolerance 1%: table interpolation between texels and the Hammersley
-// estimate (measured worst 0.17%); pixels with n.v < 0.15 (the last pixel or two of the silhouette) are excluded since the G-buffer's
-// interpolated normals differ there from the tessellated geometry's.
+// estimate (measured worst 0.17%). Pixels with n.v < 0.15 (the last pixel or two of the silhouette) are excluded:
+// the G-buffer's interpolated normals differ there from the tessellated geometry's.
 TEST(Environment, WhiteMetalReflectsTheLobeAlbedo) {
     SphereRig rig;
     rig.scene.environment = "constant:1,1,1";
@@ -334,7 +336,8 @@ TEST(Environment, ShIrradianceMatchesQuadrature) {
         glm::dvec3 ref = envref::diffuseReference(source, n);
         double x = n.x, y = n.y, z = n.z;
         const double basis[9] = {0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x, 1.092548 * x * y,
-                                 1.092548 * y * z, 0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y)};
+                                 1.092548 * y * z,  0.315392 * (3 * z * z - 1), 1.092548 * x * z,
+                                 0.546274 * (x * x - y * y)};
         glm::dvec3 value(0.0);
         for (int k = 0; k < 9; ++k) value += glm::dvec3(sh[k]) * basis[k];
         pairs.push_back({value, ref});
@@ -351,8 +354,8 @@ TEST(Environment, ShIrradianceMatchesQuadrature) {
 
 // The full lighting pass on a smooth metal sphere (f0 = 1, no lights) under the synthetic map, at sampled pixels.
 // (a) Against CPU split sum: CPU-prefiltered radiance at the mirror direction times the quadrature table value,
-//     with alpha on a prefiltered level (alpha = 0.16; no blending between levels): 5% per pixel (the prefilter's 4% plus table
-//     interpolation; measured worst 2.0% GGX, 3.2% Beckmann) and 1.5% on average.
+//     with alpha on a prefiltered level (alpha = 0.16; no blending between levels): 5% per pixel (the prefilter's
+//     4% plus table interpolation; measured worst 2.0% GGX, 3.2% Beckmann) and 1.5% on average.
 // (b) Against the true reflection integral (Cook-Torrance with Smith G and Schlick F by quadrature over the cube):
 //     split-sum is an approximation (it assumes n = v = r for the lobe's shape and ignores its stretching at
 //     grazing angles), so the tolerance is looser and stated on the distribution over pixels with n.v >= 0.3:
@@ -386,7 +389,8 @@ TEST(Environment, SplitSumShadingMatchesCpu) {
                 glm::dvec3 r = 2.0 * nDotV * n - v;
                 glm::dvec3 value = pixel(hdr, rig.size, x, y);
                 glm::dvec2 ab = envref::splitSumReference(nDotV, alpha, int(ndf));
-                glm::dvec3 split = envref::prefilteredRadianceReference(source, glm::vec3(r), alpha, int(ndf)) * (ab.x + ab.y);
+                glm::dvec3 split =
+                    envref::prefilteredRadianceReference(source, glm::vec3(r), alpha, int(ndf)) * (ab.x + ab.y);
                 double e = onLevel ? relativeError(value, split) : 0.0;
                 worstSplit = std::max(worstSplit, e);
                 sumSplit += e;
@@ -407,10 +411,10 @@ TEST(Environment, SplitSumShadingMatchesCpu) {
 }
 
 // Sky pixels show the map's radiance along the view ray, rotated by env.rotation and scaled by env.intensity.
-// Synthetic map: 1% (two bilinear resamplings of a smooth map; measured 0.03%). Real map (skipped without ../shared/assets): its
-// detail is resampled twice (equirect -> cube texel centres -> bilinear), so per pixel it differs by up to the
-// local contrast; checked on the median (2%) and the 90th percentile (8%) of the relative error (measured 0.4%
-// and 2.9%; the maximum, at foliage edges against the sky, is about 190%).
+// Synthetic map: 1% (two bilinear resamplings of a smooth map; measured 0.03%). Real map (skipped without
+// ../shared/assets): its detail is resampled twice (equirect -> cube texel centres -> bilinear), so per pixel it
+// differs by up to the local contrast; checked on the median (2%) and the 90th percentile (8%) of the relative
+// error (measured 0.4% and 2.9%; the maximum, at foliage edges against the sky, is about 190%).
 TEST(Environment, SkyPixelsShowTheMap) {
     struct Case { fs::path path; bool smooth; };
     std::vector<Case> cases = {{syntheticExr(), true}};
@@ -431,7 +435,8 @@ TEST(Environment, SkyPixelsShowTheMap) {
             for (int x = 0; x < rig.size; ++x) {
                 if (isSurface(hdr, rig.size, x, y)) continue;
                 glm::vec3 d = glm::vec3(-rig.viewDirection(x, y));
-                glm::dvec3 expected = 1.5 * glm::dvec3(envref::sampleEquirect(map, envref::worldToEnvironment(d, 30.0f)));
+                glm::vec3 mapDirection = envref::worldToEnvironment(d, 30.0f);
+                glm::dvec3 expected = 1.5 * glm::dvec3(envref::sampleEquirect(map, mapDirection));
                 errors.push_back(relativeError(pixel(hdr, rig.size, x, y), expected));
             }
         ASSERT_GT(errors.size(), size_t(rig.size * rig.size / 2));

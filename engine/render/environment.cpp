@@ -316,7 +316,8 @@ void Environment::projectIrradiance() {
         for (int y = 0; y < image.size; ++y)
             for (int x = 0; x < image.size; ++x) {
                 glm::dvec3 d(envref::cubeTexelDirection(face, x, y, image.size));
-                glm::dvec3 radiance = glm::dvec3(image.texel(face, x, y)) * envref::cubeTexelSolidAngle(x, y, image.size);
+                double solidAngle = envref::cubeTexelSolidAngle(x, y, image.size);
+                glm::dvec3 radiance = glm::dvec3(image.texel(face, x, y)) * solidAngle;
                 const double basis[9] = {0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x,
                                          1.092548 * d.x * d.y, 1.092548 * d.y * d.z,
                                          0.315392 * (3.0 * d.z * d.z - 1.0), 1.092548 * d.x * d.z,

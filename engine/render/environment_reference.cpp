@@ -28,8 +28,9 @@ glm::vec3 sampleEquirect(const ImageF& image, glm::vec3 direction) {
         y = std::clamp(y, 0, image.height - 1);
         return glm::vec3(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
     };
-    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), tx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), tx),
-                    ty);
+    glm::vec3 top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), tx);
+    glm::vec3 bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), tx);
+    return glm::mix(top, bottom, ty);
 }
 
 glm::vec3 cubeTexelDirection(int face, int x, int y, int size) {
