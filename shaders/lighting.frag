@@ -5,6 +5,7 @@
 #include "common/brdf.glsl"
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
+#include "common/ibl.glsl"
 #include GLINT_METHOD_FILE
 
 layout(binding = 0) uniform sampler2D g_uvDuvdx;
@@ -47,7 +48,10 @@ void main() {
     float depth = texelFetch(g_depth, pixel, 0).r;
     int view = u_viewport.w;
     if (depth <= 0.0) {   // reversed-Z clear value: nothing was drawn here
-        o_color = vec4(view == VIEW_FINAL ? u_skyColor.rgb : vec3(0.0), 0.0);
+        // The environment's radiance along the view ray (through the near plane, depth 1), else the sky colour.
+        vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
+                                : u_skyColor.rgb;
+        o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
         return;
     }
     vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
@@ -84,7 +88,9 @@ void main() {
     // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7).
     GlintPixel glint = glintSetup(s);
 
-    vec3 radiance = u_skyColor.rgb * u_exposure.z * diffuseAlbedo;   // constant ambient (no environment map)
+    // Image-based lighting (common/ibl.glsl), or the constant ambient when the environment is off (--env none).
+    vec3 radiance = envEnabled() ? envLighting(s.n, toEye, diffuseAlbedo, f0, s.alpha, s.ndf)
+                                 : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
     float firstLightD = 0.0;
     int lightCount = int(u_exposure.y);
     for (int i = 0; i < lightCount; ++i) {

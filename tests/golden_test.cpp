@@ -20,6 +20,7 @@ RenderResult renderScene(const std::string& scene, const std::filesystem::path& 
     request.scene = scene;
     request.width = request.height = 256;
     request.shaderRoot = shaderRoot;
+    request.environment = "none";   // goldens of the constant-ambient look; environment lighting: environment_test.cpp
     return renderOffscreen(request);
 }
 

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "glints/methods.h"
 #include "render/aov.h"
+#include "render/environment.h"
 #include "scene/builtin_scenes.h"
 
 namespace glimmer {
@@ -23,10 +24,14 @@ RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaul
         request.shaderRoot = *dir;
     }
     if (auto env = args.value("--env")) {
-        if (*env != "none") {
-            if (!std::filesystem::exists(*env)) throw Error("--env: " + *env + ": file not found");
-            throw Error("--env: environment maps are not supported yet (issue: walkthrough); use --env none");
+        // Check what can be checked before a context exists; a corrupt image is reported when it is decoded.
+        EnvironmentSpec spec = parseEnvironmentSpec(*env, "--env");
+        if (spec.kind == EnvironmentSpec::Kind::File) {
+            std::error_code ec;
+            if (!std::filesystem::exists(spec.path, ec)) throw Error("--env: " + *env + ": file not found");
+            if (!std::filesystem::is_regular_file(spec.path, ec)) throw Error("--env: " + *env + ": not a file");
         }
+        request.environment = *env;
     }
     request.spp = args.intValue("--spp", 1, 1, 1 << 20);
     return request;

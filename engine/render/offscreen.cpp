@@ -23,6 +23,12 @@ OffscreenSession::OffscreenSession(const RenderRequest& request) {
     renderer_ = std::make_unique<Renderer>(request.shaderRoot.empty() ? defaultShaderDir() : request.shaderRoot,
                                            request.settings);
     programBuildMs_ = clock.elapsedMs();
+    applyEnvironment(request);   // precompute now, so frame timings do not include it
+}
+
+void OffscreenSession::applyEnvironment(const RenderRequest& request) {
+    if (request.environment) scene_.environment = *request.environment;
+    renderer_->prepareEnvironment(scene_, request.environment ? "--env" : "scene environment");
 }
 
 OffscreenSession::~OffscreenSession() {
@@ -38,6 +44,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     applySceneOverrides(request.settings, scene_);
     gpuScene_->updateMaterialsAndLights(scene_);
     renderer_->setSettings(request.settings);
+    applyEnvironment(request);
     const Camera& camera = scene_.camera(request.camera);
 
     Stopwatch total;
@@ -79,6 +86,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"frames", frameMs.size()},
         {"scene_load_ms", sceneLoadMs_},
         {"program_build_ms", programBuildMs_},
+        {"environment", renderer_->environment().stats()},
         {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
                     {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
                     {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},

@@ -3,6 +3,7 @@
 #pragma once
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct RenderRequest {
     std::filesystem::path shaderRoot;  // empty = defaultShaderDir()
     int frames = 1;                    // frames rendered (the last one is read back)
     int spp = 1;                       // samples per pixel for accumulating integrators (environment lighting)
+    // --env: overrides Scene::environment ("" or "procedural", "none", "constant:R,G,B", or an image path).
+    std::optional<std::string> environment;
 };
 
 struct RenderResult {
@@ -46,6 +49,7 @@ private:
     Scene baseScene_, scene_;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<Renderer> renderer_;
+    void applyEnvironment(const RenderRequest& request);
     double sceneLoadMs_ = 0.0, programBuildMs_ = 0.0;
 };
 

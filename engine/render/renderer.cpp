@@ -12,7 +12,7 @@
 namespace glimmer {
 
 Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings)
-    : shaderRoot_(std::move(shaderRoot)), settings_(settings) {
+    : shaderRoot_(std::move(shaderRoot)), settings_(settings), environment_(shaderRoot_) {
     gl::enableDebugOutput();
     frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
@@ -79,8 +79,13 @@ std::vector<std::filesystem::path> Renderer::shaderDependencies() const {
     return all;
 }
 
+void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
+    environment_.update(scene.environment, sunFromScene(scene), flag);
+}
+
 void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                       bool measurePasses) {
+    prepareEnvironment(scene);
     targets_.resize(width, height);
     timings_.clear();
 
@@ -149,6 +154,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glDepthMask(GL_FALSE);
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
+    environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());
     glBindVertexArray(emptyVao_.id());

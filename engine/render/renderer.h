@@ -9,6 +9,7 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/methods.h"
+#include "render/environment.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
 #include "render/settings.h"
@@ -41,6 +42,11 @@ public:
                 bool measurePasses = false);
     const std::vector<PassTiming>& passTimings() const { return timings_; }
 
+    // Makes Scene::environment the active environment (built on first use, rebuilt when it changes); render()
+    // calls it too. `flag` names the spec's origin in error messages.
+    void prepareEnvironment(const Scene& scene, const std::string& flag = "scene environment");
+    const Environment& environment() const { return environment_; }
+
     const FrameTargets& targets() const { return targets_; }
     // Readbacks, bottom row first (GL order).
     std::vector<float> readHdr() const;        // RGBA32F
@@ -56,6 +62,7 @@ private:
     RenderSettings settings_;
     gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_;
     gl::VertexArray emptyVao_;

@@ -23,6 +23,9 @@ const std::vector<CommonParam>& commonParams() {
         {{"material.density_scale", 1.0f, 0.0f, 1e6f, "glint density multiplier of every material", {}, false,
           true},
          true},
+        {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
+        {{"env.rotation", 0.0f, -360.0f, 360.0f,
+          "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
     };
     return params;
 }

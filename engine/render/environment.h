@@ -1,0 +1,110 @@
+// Image-based lighting from an environment: loading (equirectangular .hdr / .exr, a procedural sky with a sun, or
+// a constant), conversion to a cubemap with a full mip chain, GGX and Beckmann prefiltered specular mips, diffuse
+// irradiance as order-2 spherical harmonics, and the split-sum BRDF table. All maps are built on the GPU by the
+// compute passes in shaders/env/; shaders/common/ibl.glsl reads them in the lighting pass.
+//
+// Methods: split-sum approximation and prefiltered mips per roughness (Karis 2013, "Real Shading in Unreal Engine
+// 4", Eq. 2-4), filtered importance sampling of the source mips (Krivanek & Colbert 2008, GPU Gems 3 ch. 20,
+// Eq. 20-1/20-2), irradiance environment maps by spherical harmonics (Ramamoorthi & Hanrahan 2001, Eq. 7-8).
+#pragma once
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <filesystem>
+#include <string>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "scene/scene.h"
+
+namespace glimmer {
+
+// What `--env` / Scene::environment name: "" or "procedural" (default sky), "none", "constant:R,G,B" (or
+// "constant:V"), or an image path.
+struct EnvironmentSpec {
+    enum class Kind { Procedural, None, Constant, File };
+    Kind kind = Kind::Procedural;
+    glm::vec3 constant{0.0f};
+    std::filesystem::path path;
+};
+// Throws UsageError naming `flag` for a malformed constant; does not touch the file system.
+EnvironmentSpec parseEnvironmentSpec(const std::string& text, const std::string& flag);
+
+// The sun of the procedural sky follows the scene's first directional light. When that light exists it already
+// lights the scene analytically, so the sun disk is drawn in the background (and mirror level) only and kept out
+// of the prefiltered and irradiance maps (no double counting); without one, the sun is part of the lighting.
+struct SunDescription {
+    bool analytic = false;               // a directional light carries the sun's direct light
+    glm::vec3 direction{0.3f, 0.55f, -0.78f};
+    glm::vec3 irradiance{3.0f};          // colour x intensity: irradiance at normal incidence
+    bool operator==(const SunDescription&) const = default;
+};
+SunDescription sunFromScene(const Scene& scene);
+
+// Wall-clock milliseconds of each precompute step (each closed by glFinish).
+struct EnvironmentTimings {
+    double loadMs = 0, convertMs = 0, mipsMs = 0, prefilterMs = 0, irradianceMs = 0, brdfLutMs = 0, totalMs = 0;
+};
+
+// The uniform block of shaders/common/ibl.glsl (std140, binding kEnvironmentBinding).
+struct EnvironmentUniforms {
+    glm::vec4 sh[9];        // rgb: irradiance / pi as order-2 SH coefficients (already cosine-convolved)
+    glm::vec4 params;       // x intensity, y enabled (0/1), z last prefiltered level, w unused
+    glm::vec4 rotation;     // x cos, y sin of env.rotation (about +y)
+};
+static_assert(sizeof(EnvironmentUniforms) == 11 * 16);
+
+constexpr unsigned kEnvironmentBinding = 7;      // uniform block binding
+constexpr unsigned kEnvironmentSpecularUnit = 6; // samplerCubeArray: layer 0 GGX, layer 1 Beckmann
+constexpr unsigned kEnvironmentBrdfLutUnit = 7;  // sampler2D: rg GGX (A, B), ba Beckmann (A, B)
+
+class Environment {
+public:
+    static constexpr int kFaceSize = 256;        // source cube face (level 0 of every map)
+    static constexpr int kPrefilterLevels = 6;   // 256 .. 8; level k holds roughness sqrt(alpha) = k / 5
+    static constexpr int kBrdfLutSize = 64;
+    static constexpr int kIrradianceFace = 32;   // source mip projected onto SH
+
+    explicit Environment(std::filesystem::path shaderRoot);
+
+    // Makes `spec` the active environment; rebuilds only when the spec (or, for the procedural sky, the sun)
+    // changed. `flag` names where the spec came from in error messages ("--env" or "scene environment").
+    // Throws Error naming the flag and file when an image cannot be read or holds no RGB data.
+    void update(const std::string& spec, const SunDescription& sun, const std::string& flag);
+    bool enabled() const { return enabled_; }
+    // Uploads the uniform block and binds the textures (units 6-7, block binding 7) for the lighting pass.
+    void bind(float intensity, float rotationDegrees);
+
+    const EnvironmentTimings& timings() const { return timings_; }
+    nlohmann::json stats() const;
+
+    // For tests: the GPU-side maps and the SH coefficients.
+    GLuint sourceCube() const { return sourceCube_.id(); }
+    GLuint specularCubeArray() const { return specular_.id(); }
+    GLuint brdfLut() const { return brdfLut_.id(); }
+    const std::array<glm::vec3, 9>& irradianceSh() const { return sh_; }
+    static float levelAlpha(int level) {
+        float r = float(level) / float(kPrefilterLevels - 1);
+        return r * r;
+    }
+
+private:
+    void buildBrdfLut();
+    void buildMaps(const EnvironmentSpec& spec, const SunDescription& sun);
+    void fillProceduralSky(const SunDescription& sun, bool drawSun);
+    void prefilter();
+    void projectIrradiance();
+
+    std::filesystem::path shaderRoot_;
+    gl::Program equirectProgram_, skyProgram_, prefilterProgram_, lutProgram_;
+    gl::Texture sourceCube_, specular_, brdfLut_;
+    gl::Buffer uniforms_;
+    std::array<glm::vec3, 9> sh_{};
+    std::string activeKey_;
+    EnvironmentSpec active_;
+    bool enabled_ = false;
+    EnvironmentTimings timings_;
+};
+
+}  // namespace glimmer

@@ -1,0 +1,66 @@
+// Image-based lighting lookups for the lighting pass (maps built by engine/render/environment.cpp).
+// Specular: split-sum approximation (Karis 2013, "Real Shading in Unreal Engine 4", Eq. 2-4): prefiltered radiance
+// at the mirror direction (mip chosen by roughness, layer by NDF) times the BRDF table's f0 * A + B.
+// Diffuse: irradiance from order-2 spherical harmonics (Ramamoorthi & Hanrahan 2001, Eq. 13), weighted by
+// (1 - f0 * A - B) so the Lambertian base receives what the specular layer does not reflect (a white dielectric
+// then reflects exactly the incident constant radiance: the white furnace holds). The per-light loop of
+// lighting.frag keeps its unweighted Lambert + Cook-Torrance sum.
+// Deviation: glinty materials get the smooth prefiltered baseline here; glint methods act on the lights only.
+#include "common/constants.glsl"
+
+layout(binding = 6) uniform samplerCubeArray u_envSpecular;   // layer = NDF; level 0 = unfiltered source
+layout(binding = 7) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
+
+// Mirrors EnvironmentUniforms in engine/render/environment.h (std140).
+layout(std140, binding = 7) uniform EnvironmentBlock {
+    vec4 u_envSh[9];      // rgb: irradiance / pi, cosine-convolved SH coefficients
+    vec4 u_envParams;     // x intensity, y enabled, z last prefiltered level, w unused
+    vec4 u_envRotation;   // x cos, y sin of env.rotation about +y
+};
+
+bool envEnabled() { return u_envParams.y > 0.5; }
+
+// World direction -> map direction: the map is turned by +rotation about +y (CPU: envref::worldToEnvironment).
+vec3 envDirection(vec3 d) {
+    float c = u_envRotation.x, s = u_envRotation.y;
+    return vec3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+}
+
+// Radiance seen along world direction d (the sky behind the geometry): the unfiltered level 0.
+vec3 envBackground(vec3 d) {
+    return u_envParams.x * textureLod(u_envSpecular, vec4(envDirection(d), 0.0), 0.0).rgb;
+}
+
+// Irradiance / pi at world normal n (Ramamoorthi & Hanrahan 2001, Eq. 13 with the constants folded into u_envSh).
+vec3 envDiffuse(vec3 n) {
+    vec3 d = envDirection(n);
+    vec3 e = u_envSh[0].rgb * 0.282095
+           + u_envSh[1].rgb * (0.488603 * d.y) + u_envSh[2].rgb * (0.488603 * d.z) + u_envSh[3].rgb * (0.488603 * d.x)
+           + u_envSh[4].rgb * (1.092548 * d.x * d.y) + u_envSh[5].rgb * (1.092548 * d.y * d.z)
+           + u_envSh[6].rgb * (0.315392 * (3.0 * d.z * d.z - 1.0)) + u_envSh[7].rgb * (1.092548 * d.x * d.z)
+           + u_envSh[8].rgb * (0.546274 * (d.x * d.x - d.y * d.y));
+    return u_envParams.x * max(e, vec3(0.0));
+}
+
+// Prefiltered radiance around world direction r for NDF roughness alpha: level k holds sqrt(alpha) = k / last.
+vec3 envPrefiltered(vec3 r, float alpha, int ndf) {
+    float lod = sqrt(clamp(alpha, 0.0, 1.0)) * u_envParams.z;
+    return u_envParams.x * textureLod(u_envSpecular, vec4(envDirection(r), float(ndf)), lod).rgb;
+}
+
+// Split-sum (A, B) for n.v and alpha.
+vec2 envBrdf(float nDotV, float alpha, int ndf) {
+    vec4 t = texture(u_envBrdfLut, vec2(nDotV, sqrt(clamp(alpha, 0.0, 1.0))));
+    return ndf == NDF_BECKMANN ? t.ba : t.rg;
+}
+
+// Reflected radiance from the environment for a metalness-workflow surface (world-space n, unit vector to eye).
+vec3 envLighting(vec3 n, vec3 toEye, vec3 diffuseAlbedo, vec3 f0, float alpha, int ndf) {
+    float nDotV = clamp(dot(n, toEye), 1e-4, 1.0);
+    vec3 r = reflect(-toEye, n);
+    vec2 ab = envBrdf(nDotV, alpha, ndf);
+    vec3 specularAlbedo = f0 * ab.x + ab.y;
+    vec3 specular = envPrefiltered(r, alpha, ndf) * specularAlbedo;
+    vec3 diffuse = diffuseAlbedo * (1.0 - specularAlbedo) * envDiffuse(n);
+    return diffuse + specular;
+}
