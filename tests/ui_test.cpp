@@ -231,6 +231,20 @@ TEST(UiWidgets, KeyboardFocusAndAdjustWork) {
     EXPECT_TRUE(pressed);
     frame(ui, down, build);  // wraps to the first widget
     EXPECT_EQ(ui.focusIndex(), 0);
+
+    Context fresh;  // several presses within one (slow) frame all count
+    auto buildFresh = [&] {
+        fresh.slider("first", spec, first);
+        fresh.slider("second", spec, second);
+        fresh.button("go");
+    };
+    frame(fresh, {}, buildFresh);
+    Input twice;
+    twice.focusMove = 2;
+    twice.adjust = 3;
+    frame(fresh, twice, buildFresh);
+    EXPECT_EQ(fresh.focusIndex(), 1);
+    EXPECT_EQ(second, 5.0f);
 }
 
 TEST(UiWidgets, TallPanelsScrollAndHideRowsOutOfView) {

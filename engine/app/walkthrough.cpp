@@ -411,7 +411,13 @@ private:
                       captured_ ? "  mouse captured (C/Esc)" : "");
         std::string second = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe) | " : "";
         second += where;
-        if (now_ < messageUntil_) second += "  |  " + message_;
+        if (now_ < messageUntil_) {
+            // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner.
+            float textW = float(ui::textWidth(message_, ui_.scale()));
+            float boxW = std::min(textW + 2.0f * margin, float(width) * 0.6f);
+            ui_.box({float(width) - boxW - margin, margin, boxW, line + margin}, {0, 0, 0, 200});
+            ui_.textAt({float(width) - boxW, margin + margin * 0.5f}, message_, ui::palette::kHeading, boxW - margin);
+        }
         ui_.textAt({margin, top + margin}, first, ui::palette::kText, float(width) - 2.0f * margin);
         ui_.textAt({margin, top + margin + line}, second, ui::palette::kDim, float(width) - 2.0f * margin);
     }

@@ -93,8 +93,9 @@ void Context::begin(const Input& input, int screenWidth, int screenHeight, int s
     lastFocusableCount_ = focusableCount_;
     focusableCount_ = 0;
     if (input_.focusMove != 0 && lastFocusableCount_ > 0) {
-        if (focus_ < 0) focus_ = input_.focusMove > 0 ? 0 : lastFocusableCount_ - 1;
-        else focus_ = ((focus_ + input_.focusMove) % lastFocusableCount_ + lastFocusableCount_) % lastFocusableCount_;
+        // From "no focus", Down lands on the first widget and Up on the last (several presses in one frame add).
+        int from = focus_ >= 0 ? focus_ : (input_.focusMove > 0 ? -1 : 0);
+        focus_ = ((from + input_.focusMove) % lastFocusableCount_ + lastFocusableCount_) % lastFocusableCount_;
     }
 }
 
@@ -307,7 +308,8 @@ Edit Context::slider(std::string_view text, const ParamSpec& spec, float& value,
             float textX = valueArea.x + cell + std::max(0.0f, (inner - float(textWidth(shown, scale_))) * 0.5f);
             draw_.text({textX, textY}, shown, palette::kText, scale_, inner);
         } else {
-            draw_.fill({row.x, row.y, std::round(row.w * sliderFraction(spec, value)), row.h}, palette::kFill);
+            // No fill for a value that is not ours to show (valueText, e.g. "scene").
+            if (!valueText) draw_.fill({row.x, row.y, std::round(row.w * sliderFraction(spec, value)), row.h}, palette::kFill);
             float valueWidth = float(textWidth(shown, scale_));
             draw_.text({row.x + float(2 * scale_), textY}, text, palette::kText, scale_,
                        row.w - valueWidth - float(8 * scale_));
