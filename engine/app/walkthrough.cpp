@@ -136,7 +136,10 @@ public:
             int width = 0, height = 0;
             window_.framebufferSize(width, height);
             WindowEvents events = window_.takeEvents();
-            if (width <= 0 || height <= 0) continue;  // minimised
+            if (width <= 0 || height <= 0) {  // minimised: wait for events instead of spinning
+                glfwWaitEventsTimeout(0.1);
+                continue;
+            }
             pollShaderChanges();
             ui::Input uiInput = handleKeys(events, width, height);
             buildUi(uiInput, width, height);
