@@ -379,6 +379,23 @@ TEST(UiCamera, FlyCameraKeepsAnUnmovedCameraExactAndMovesAlongItsAxes) {
     EXPECT_NEAR(glm::dot(fly.camera().forward(), forward), forward.y * forward.y, 1e-4f);  // horizontal parts orthogonal
 }
 
+TEST(UiCamera, TurningACameraThatLooksStraightDownContinuesThePicture) {
+    Camera top;  // as plane90's "top": looking down, screen up = -z
+    top.position = {0, 2, 0};
+    top.target = {0, 0, 0};
+    top.up = {0, 0, -1};
+    FlyCamera fly;
+    fly.set(top);
+    fly.move({1.0f, 0.0f, 0.0f});  // D moves to screen right = +x
+    EXPECT_NEAR(fly.camera().position.x, 1.0f, 1e-6f);
+    fly.set(top);
+    fly.turn(0.0f, 0.1f);  // pitch up tilts the view towards the top of the screen (-z), without spinning
+    glm::vec3 f = fly.camera().forward();
+    EXPECT_LT(f.z, -0.05f);
+    EXPECT_NEAR(f.x, 0.0f, 1e-4f);
+    EXPECT_LT(f.y, -0.9f);
+}
+
 TEST(UiCamera, WalkthroughPathPassesThroughEveryCameraInOrder) {
     std::vector<Camera> cameras(3);
     cameras[0].position = {0, 1, 4};

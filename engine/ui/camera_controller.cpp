@@ -9,7 +9,12 @@ void FlyCamera::set(const Camera& camera) { camera_ = camera; }
 
 void FlyCamera::turn(float yawRadians, float pitchRadians) {
     glm::vec3 forward = camera_.forward();
-    float yaw = std::atan2(forward.z, forward.x) + yawRadians;
+    // Heading: the horizontal part of the view direction; for a camera looking straight down (or up) it is
+    // undefined, so take the screen's up direction instead (towards it when looking down, away looking up), so the
+    // first turn continues the picture instead of spinning it.
+    glm::vec2 heading{forward.x, forward.z};
+    if (glm::length(heading) < 1e-3f) heading = glm::vec2(camera_.up.x, camera_.up.z) * (forward.y < 0.0f ? 1.0f : -1.0f);
+    float yaw = std::atan2(heading.y, heading.x) + yawRadians;
     float limit = glm::radians(89.0f);
     float pitch = std::clamp(std::asin(std::clamp(forward.y, -1.0f, 1.0f)) + pitchRadians, -limit, limit);
     glm::vec3 turned{std::cos(pitch) * std::cos(yaw), std::sin(pitch), std::cos(pitch) * std::sin(yaw)};
@@ -20,7 +25,9 @@ void FlyCamera::turn(float yawRadians, float pitchRadians) {
 void FlyCamera::move(const glm::vec3& rightUpForward) {
     glm::vec3 forward = camera_.forward();
     glm::vec3 worldUp{0.0f, 1.0f, 0.0f};
-    glm::vec3 right = glm::cross(forward, worldUp);
+    // Screen right (from the camera's own up, which differs from world up for cameras looking straight down).
+    glm::vec3 right = glm::cross(forward, camera_.up);
+    if (glm::length(right) < 1e-6f) right = glm::cross(forward, worldUp);
     right = glm::length(right) > 1e-6f ? glm::normalize(right) : glm::vec3(1.0f, 0.0f, 0.0f);
     glm::vec3 delta = right * rightUpForward.x + worldUp * rightUpForward.y + forward * rightUpForward.z;
     // Move the target with the position so the view direction is kept exactly.
