@@ -162,7 +162,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         if (measurePasses) {
             glFinish();
             clock.restart();
-            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[queryIndex].id());
+            if (size_t(queryIndex) >= timerQueries_.size()) {
+                GLuint id = 0;
+                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+                timerQueries_.emplace_back(id);
+            }
+            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[size_t(queryIndex)].id());
         } else if (timerFrame) {
             if (timerFrame->names.size() == timerFrame->queries.size()) {
                 GLuint id = 0;
@@ -178,7 +183,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
             glFinish();
             PassTiming t{name, clock.elapsedMs(), 0.0};
             GLuint64 ns = 0;
-            glGetQueryObjectui64v(timerQueries_[queryIndex].id(), GL_QUERY_RESULT, &ns);
+            glGetQueryObjectui64v(timerQueries_[size_t(queryIndex)].id(), GL_QUERY_RESULT, &ns);
             t.gpuMs = double(ns) * 1e-6;
             timings_.push_back(t);
             ++queryIndex;

@@ -78,7 +78,7 @@ private:
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_;
     gl::VertexArray emptyVao_;
-    gl::Query timerQueries_[3];
+    std::vector<gl::Query> timerQueries_ = std::vector<gl::Query>(3);  // grows when passes are added
     std::vector<PassTiming> timings_;
     std::map<std::string, std::string> shaderErrors_;
     struct TimerFrame {
