@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/image_io.h"
@@ -100,6 +102,26 @@ TEST(Window, UiPanelAndStatsAreDrawnOverThePicture) {
         test::compareWithGolden("view_panel_top", cropRgba8BottomUp(ui, x0, y0, x1, y1), x1 - x0, y1 - y0);
     if (golden.updated) GTEST_SKIP() << golden.message;
     EXPECT_TRUE(golden.passed) << golden.message;
+}
+
+// Headless runs (--frames) do not watch shaders: a compile error fails the run with file:line.
+TEST(Window, BrokenShaderFailsAFramesRunWithFileAndLine) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
+    fs::path dir = outputDir() / "broken-shaders";
+    fs::remove_all(dir);
+    fs::copy(fs::path(GLIMMER_SOURCE_DIR) / "shaders", dir, fs::copy_options::recursive);
+    {
+        std::ofstream out(dir / "tonemap.frag", std::ios::app);
+        out << "\nthis is not glsl;\n";
+    }
+    fs::path errors = outputDir() / "broken-shaders.err";
+    int status = std::system((std::string(kXvfb) + GLIMMER_EXECUTABLE " view --size 64x64 --frames 1 --shader-dir " +
+                              dir.string() + " --screenshot " + (outputDir() / "never.png").string() + " > /dev/null 2> " +
+                              errors.string()).c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
+    std::ifstream in(errors);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("tonemap.frag:"), std::string::npos) << text;
 }
 
 TEST(Window, BadArgumentsFailWithAClearMessage) {
