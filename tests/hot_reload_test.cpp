@@ -198,13 +198,17 @@ TEST(FileWatcher, DebounceMergesBurstsAndWatchesNewFolders) {
     FileWatcher watcher(copy.dir(), 80ms);
     fs::path file = copy.dir() / "fullscreen.vert";
     std::string text = readTextFile(file);
+    auto written = std::chrono::steady_clock::now();
     writeFile(file, text + "\n", false);
     std::this_thread::sleep_for(20ms);
-    EXPECT_TRUE(watcher.poll().empty()) << "reported before the debounce interval";
+    std::vector<fs::path> early = watcher.poll();
+    // On a loaded machine the sleep may outlast the debounce; only then may the change already be reported.
+    if (std::chrono::steady_clock::now() - written < 70ms) EXPECT_TRUE(early.empty()) << "reported before the debounce interval";
     writeFile(file, text + "\n\n", true);
     std::vector<fs::path> changed;
     ASSERT_GE(waitForChange(watcher, file, changed), 0.0);
     EXPECT_EQ(std::count(changed.begin(), changed.end(), fs::canonical(file)), 1);
+    if (!early.empty()) GTEST_SKIP() << "machine too slow to observe the debounce";
     EXPECT_TRUE(watcher.poll().empty());
 
     fs::create_directory(copy.dir() / "newfolder");
