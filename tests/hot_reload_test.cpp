@@ -208,7 +208,6 @@ TEST(FileWatcher, DebounceMergesBurstsAndWatchesNewFolders) {
     std::vector<fs::path> changed;
     ASSERT_GE(waitForChange(watcher, file, changed), 0.0);
     EXPECT_EQ(std::count(changed.begin(), changed.end(), fs::canonical(file)), 1);
-    if (!early.empty()) GTEST_SKIP() << "machine too slow to observe the debounce";
     EXPECT_TRUE(watcher.poll().empty());
 
     fs::create_directory(copy.dir() / "newfolder");
