@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cstdlib>
+#include <utility>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -43,6 +44,20 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool vis
 #endif
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window_) throw Error("GLFW: cannot create a 4.5 core window (" + g_lastGlfwError + ")");
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
+        auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
+        if (action == GLFW_PRESS || action == GLFW_REPEAT) self->events_.keys.push_back({key, mods, action == GLFW_REPEAT});
+    });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
+        auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
+        if (action != GLFW_PRESS) return;
+        if (button == GLFW_MOUSE_BUTTON_LEFT) self->events_.leftPressed = true;
+        if (button == GLFW_MOUSE_BUTTON_RIGHT) self->events_.rightPressed = true;
+    });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
+        static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w))->events_.scrollY += y;
+    });
     makeCurrent();
     loadGLFunctions(reinterpret_cast<void* (*)(const char*)>(glfwGetProcAddress), "GLFW");
 }
@@ -56,6 +71,12 @@ bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(window_); }
 void GlfwWindow::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void GlfwWindow::swapBuffers() { glfwSwapBuffers(window_); }
 void GlfwWindow::setVsync(bool enabled) { glfwSwapInterval(enabled ? 1 : 0); }
+WindowEvents GlfwWindow::takeEvents() { return std::exchange(events_, WindowEvents{}); }
+void GlfwWindow::setCursorCaptured(bool captured) {
+    glfwSetInputMode(window_, GLFW_CURSOR, captured ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+}
+void GlfwWindow::cursorPosition(double& x, double& y) const { glfwGetCursorPos(window_, &x, &y); }
+void GlfwWindow::windowSize(int& width, int& height) const { glfwGetWindowSize(window_, &width, &height); }
 void GlfwWindow::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
 
 }  // namespace glimmer

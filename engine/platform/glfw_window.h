@@ -2,12 +2,26 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "platform/context.h"
 
 struct GLFWwindow;
 
 namespace glimmer {
+
+// Input events gathered by GLFW callbacks between two takeEvents() calls (so that presses shorter than a frame
+// are not lost); held keys and buttons are polled through glfwHandle().
+struct WindowEvents {
+    struct Key {
+        int key;     // GLFW_KEY_*
+        int mods;    // GLFW_MOD_* bits
+        bool repeat; // auto-repeat of a held key
+    };
+    std::vector<Key> keys;
+    bool leftPressed = false, rightPressed = false;
+    double scrollY = 0.0;
+};
 
 class GlfwWindow final : public GLContext {
 public:
@@ -26,12 +40,18 @@ public:
     void setVsync(bool enabled);
     void framebufferSize(int& width, int& height) const;
     GLFWwindow* glfwHandle() const { return window_; }
+    WindowEvents takeEvents();
+    // Hides the cursor and reports unbounded motion (mouse look), or restores it.
+    void setCursorCaptured(bool captured);
+    void cursorPosition(double& x, double& y) const;
+    void windowSize(int& width, int& height) const;
 
     // True when a display is reachable (used to choose between the window and an offscreen render).
     static bool displayAvailable();
 
 private:
     GLFWwindow* window_ = nullptr;
+    WindowEvents events_;
 };
 
 }  // namespace glimmer

@@ -54,7 +54,42 @@ void Renderer::createMethodResources() {
     methodResources_ = method.createResources ? method.createResources() : nullptr;
 }
 
-void Renderer::reloadPrograms() { buildPrograms(); }
+void Renderer::reloadPrograms() {
+    try {
+        buildPrograms();
+        shaderErrors_.clear();
+    } catch (const std::exception& e) {
+        shaderErrors_["all programs"] = e.what();
+        throw;
+    }
+}
+
+std::vector<gl::Program*> Renderer::programs() { return {&gbufferProgram_, &lightingProgram_, &tonemapProgram_}; }
+std::vector<const gl::Program*> Renderer::programs() const {
+    return {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
+}
+
+std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::filesystem::path>& changedFiles) {
+    std::vector<std::string> rebuilt;
+    for (gl::Program* program : programs()) {
+        bool affected = false;
+        for (const auto& file : changedFiles)
+            affected |= std::find(program->dependencies().begin(), program->dependencies().end(), file) !=
+                        program->dependencies().end();
+        if (!affected) continue;
+        const std::string name = program->desc().name;
+        try {
+            gl::Program fresh(shaderRoot_, program->desc());
+            *program = std::move(fresh);  // swap only after a successful link
+            shaderErrors_.erase(name);
+            shaderErrors_.erase("all programs");
+            rebuilt.push_back(name);
+        } catch (const std::exception& e) {
+            shaderErrors_[name] = e.what();
+        }
+    }
+    return rebuilt;
+}
 
 void Renderer::setSettings(const RenderSettings& settings) {
     bool methodChanged = settings.method != settings_.method;
@@ -62,7 +97,9 @@ void Renderer::setSettings(const RenderSettings& settings) {
     settings_ = settings;
     if (methodChanged) {
         try {
+            std::string previousName = lightingProgram_.desc().name;
             lightingProgram_ = gl::Program(shaderRoot_, lightingDesc());
+            shaderErrors_.erase(previousName);
             createMethodResources();
         } catch (...) {
             settings_ = previous;
@@ -73,7 +110,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
 
 std::vector<std::filesystem::path> Renderer::shaderDependencies() const {
     std::vector<std::filesystem::path> all;
-    for (const gl::Program* p : {&gbufferProgram_, &lightingProgram_, &tonemapProgram_})
+    for (const gl::Program* p : programs())
         for (const auto& f : p->dependencies())
             if (std::find(all.begin(), all.end(), f) == all.end()) all.push_back(f);
     return all;
@@ -87,7 +124,25 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                       bool measurePasses) {
     prepareEnvironment(scene);
     targets_.resize(width, height);
-    timings_.clear();
+    TimerFrame* timerFrame = asyncGpuTimers_ && !measurePasses ? &asyncTimers_[frameIndex_ % kTimerFrames] : nullptr;
+    if (!timerFrame) timings_.clear();
+    if (timerFrame && timerFrame->pending) {
+        // Read the queries issued kTimerFrames frames ago, only if the last one has finished (never wait).
+        GLint available = 0;
+        glGetQueryObjectiv(timerFrame->queries[timerFrame->names.size() - 1].id(), GL_QUERY_RESULT_AVAILABLE, &available);
+        if (available) {
+            timings_.clear();
+            for (size_t i = 0; i < timerFrame->names.size(); ++i) {
+                GLuint64 ns = 0;
+                glGetQueryObjectui64v(timerFrame->queries[i].id(), GL_QUERY_RESULT, &ns);
+                timings_.push_back({timerFrame->names[i], 0.0, double(ns) * 1e-6});
+            }
+        }
+    }
+    if (timerFrame) {
+        timerFrame->names.clear();
+        timerFrame->pending = false;
+    }
 
     FrameUniforms frame{};
     frame.view = camera.view();
@@ -112,7 +167,19 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         if (measurePasses) {
             glFinish();
             clock.restart();
-            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[queryIndex].id());
+            if (size_t(queryIndex) >= timerQueries_.size()) {
+                GLuint id = 0;
+                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+                timerQueries_.emplace_back(id);
+            }
+            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[size_t(queryIndex)].id());
+        } else if (timerFrame) {
+            if (timerFrame->names.size() == timerFrame->queries.size()) {
+                GLuint id = 0;
+                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+                timerFrame->queries.emplace_back(id);
+            }
+            glBeginQuery(GL_TIME_ELAPSED, timerFrame->queries[timerFrame->names.size()].id());
         }
     };
     auto endPass = [&](const char* name) {
@@ -121,10 +188,14 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
             glFinish();
             PassTiming t{name, clock.elapsedMs(), 0.0};
             GLuint64 ns = 0;
-            glGetQueryObjectui64v(timerQueries_[queryIndex].id(), GL_QUERY_RESULT, &ns);
+            glGetQueryObjectui64v(timerQueries_[size_t(queryIndex)].id(), GL_QUERY_RESULT, &ns);
             t.gpuMs = double(ns) * 1e-6;
             timings_.push_back(t);
             ++queryIndex;
+        } else if (timerFrame) {
+            glEndQuery(GL_TIME_ELAPSED);
+            timerFrame->names.push_back(name);
+            timerFrame->pending = true;
         }
         glPopDebugGroup();
     };

@@ -1,7 +1,9 @@
 // The deferred renderer: G-buffer pass, lighting pass (with the selected glint method), tone-mapping pass.
 // Owns its programs and frame targets; the scene is uploaded separately (GpuScene).
 #pragma once
+#include <array>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +38,20 @@ public:
     const std::filesystem::path& shaderRoot() const { return shaderRoot_; }
     std::vector<std::filesystem::path> shaderDependencies() const;
 
+    // Hot reload: rebuilds only the programs built from one of `changedFiles` (canonical paths, as
+    // shaderDependencies() lists them). Each program is swapped only after it compiled and linked; a failing one
+    // keeps running its last good version and its error ("file:line: message") stays in shaderErrors() until a
+    // later rebuild of that program succeeds. Returns the names of the programs rebuilt successfully.
+    std::vector<std::string> reloadChangedPrograms(const std::vector<std::filesystem::path>& changedFiles);
+    // Program name -> first error of its last failed rebuild (empty when every program is up to date).
+    const std::map<std::string, std::string>& shaderErrors() const { return shaderErrors_; }
+
+    // Window mode: when enabled and render() is called without measurePasses, each pass is wrapped in a
+    // GL_TIME_ELAPSED query that is read back kTimerFrames frames later only if its result is already
+    // available: no glFinish, no stall. passTimings() then holds gpuMs (wallMs 0) of a frame a few frames old.
+    // Meaningless on software renderers (llvmpipe times the submit, not the work).
+    void setAsyncGpuTimers(bool enabled) { asyncGpuTimers_ = enabled; }
+
     // Renders one frame into the targets (HDR radiance or the debug view, then the display image).
     // With measurePasses, each pass is closed by glFinish and timed (adds sync points; off in the window).
     void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
@@ -57,6 +73,9 @@ private:
     void buildPrograms();
     void createMethodResources();
     gl::ProgramDesc lightingDesc() const;
+    // Every program the renderer draws with (hot reload and dependency listing walk this list).
+    std::vector<gl::Program*> programs();
+    std::vector<const gl::Program*> programs() const;
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
@@ -66,8 +85,17 @@ private:
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_;
     gl::VertexArray emptyVao_;
-    gl::Query timerQueries_[3];
+    std::vector<gl::Query> timerQueries_ = std::vector<gl::Query>(3);  // grows when passes are added
     std::vector<PassTiming> timings_;
+    std::map<std::string, std::string> shaderErrors_;
+    struct TimerFrame {
+        std::vector<gl::Query> queries;
+        std::vector<std::string> names;
+        bool pending = false;
+    };
+    static constexpr size_t kTimerFrames = 3;
+    std::array<TimerFrame, kTimerFrames> asyncTimers_;
+    bool asyncGpuTimers_ = false;
     uint32_t frameIndex_ = 0;
 };
 

@@ -1,0 +1,495 @@
+#include "app/walkthrough.h"
+
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "core/clock.h"
+#include "core/error.h"
+#include "core/file_watcher.h"
+#include "core/files.h"
+#include "core/image_io.h"
+#include "core/log.h"
+#include "gl/program.h"
+#include "platform/glfw_window.h"
+#include "render/aov.h"
+#include "render/renderer.h"
+#include "scene/scene_loader.h"
+#include "ui/camera_controller.h"
+#include "ui/font.h"
+#include "ui/settings_panel.h"
+#include "ui/ui.h"
+#include "ui/ui_renderer.h"
+
+namespace glimmer {
+namespace {
+
+constexpr float kLookRadiansPerPixel = 0.0025f;
+constexpr float kShiftSpeedFactor = 4.0f;
+constexpr float kWheelSpeedFactor = 1.2f;
+constexpr double kMessageSeconds = 4.0;
+
+// The window image: the renderer's display image with the UI drawn over it. Rendering the overlay into our own
+// texture (not the window) keeps screenshots independent of the window system.
+class PresentTarget {
+public:
+    void resize(int width, int height) {
+        if (width == width_ && height == height_) return;
+        width_ = width;
+        height_ = height;
+        texture_ = gl::createTexture2D(GL_RGBA8, width, height);
+        GLuint fbo = 0;
+        glCreateFramebuffers(1, &fbo);
+        framebuffer_ = gl::Framebuffer(fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture_.id(), 0);
+    }
+    GLuint framebuffer() const { return framebuffer_.id(); }
+    std::vector<uint8_t> read() const {
+        std::vector<uint8_t> pixels(size_t(width_) * height_ * 4);
+        glGetTextureImage(texture_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
+        for (size_t i = 3; i < pixels.size(); i += 4) pixels[i] = 255;
+        return pixels;
+    }
+
+private:
+    int width_ = 0, height_ = 0;
+    gl::Texture texture_;
+    gl::Framebuffer framebuffer_;
+};
+
+// Splits `text` into lines of at most `columns` characters (breaking at spaces where possible).
+std::vector<std::string> wrapText(const std::string& text, size_t columns) {
+    std::vector<std::string> lines;
+    std::string rest = text;
+    while (rest.size() > columns) {
+        size_t cut = rest.rfind(' ', columns);
+        if (cut == std::string::npos || cut < columns / 2) cut = columns;
+        lines.push_back(rest.substr(0, cut));
+        rest = rest.substr(cut == columns ? cut : cut + 1);
+    }
+    lines.push_back(rest);
+    return lines;
+}
+
+std::string formatMs(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", ms);
+    return text;
+}
+
+class Walkthrough {
+public:
+    explicit Walkthrough(const ViewOptions& options)
+        : options_(options),
+          baseScene_(loadScene(options.request.scene)),
+          window_(options.request.width, options.request.height, "Glimmer - " + baseScene_.name,
+                  options.frameLimit == 0) {
+        const Camera& start = baseScene_.camera(options.request.camera);
+        scene_ = baseScene_;
+        applySceneOverrides(options.request.settings, scene_);
+        gpuScene_ = std::make_unique<GpuScene>(scene_);
+        std::filesystem::path shaderRoot =
+            options.request.shaderRoot.empty() ? defaultShaderDir() : options.request.shaderRoot;
+        renderer_ = std::make_unique<Renderer>(shaderRoot, options.request.settings);
+        renderer_->setAsyncGpuTimers(true);
+        uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);
+        // Headless runs (--frames) build once and fail on any error; the interactive window watches shaders/.
+        if (options.frameLimit == 0) {
+            try {
+                watcher_ = std::make_unique<FileWatcher>(shaderRoot);
+                log::info("view: watching ", watcher_->root().string(), " for shader edits (",
+                          watcher_->mode() == FileWatcher::Mode::Inotify ? "inotify" : "modification times", ")");
+            } catch (const std::exception& e) {
+                log::warn("view: no shader hot reload: ", e.what());
+            }
+        }
+        fly_.set(start);
+        for (const Camera& c : baseScene_.cameras) controls_.cameraNames.push_back(c.name);
+        controls_.moveSpeed = std::clamp(glm::length(start.target - start.position) * 0.5f, 0.05f, 20.0f);
+        controls_.vsync = options.vsync && options.frameLimit == 0;
+        window_.setVsync(controls_.vsync);
+        uiHidden_ = options.hideUi;
+        std::string rendererName = window_.rendererString();
+        softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
+                            rendererName.find("softpipe") != std::string::npos;
+        log::info("view: ", rendererName, ", ", window_.versionString());
+    }
+
+    ~Walkthrough() {
+        window_.makeCurrent();  // GL objects die with the context current
+    }
+
+    int run() {
+        Stopwatch clock;
+        for (int frame = 0; !window_.shouldClose() && (options_.frameLimit == 0 || frame < options_.frameLimit);
+             ++frame) {
+            glfwPollEvents();
+            double dt = clock.elapsedMs() * 1e-3;
+            clock.restart();
+            frameMs_ = frame == 0 ? dt * 1e3 : frameMs_ * 0.9 + dt * 1e3 * 0.1;
+            now_ += dt;
+            int width = 0, height = 0;
+            window_.framebufferSize(width, height);
+            WindowEvents events = window_.takeEvents();
+            if (width <= 0 || height <= 0) {  // minimised: wait for events instead of spinning
+                glfwWaitEventsTimeout(0.1);
+                continue;
+            }
+            pollShaderChanges();
+            ui::Input uiInput = handleKeys(events, width, height);
+            buildUi(uiInput, width, height);
+            moveCamera(events, float(dt));
+            drawFrame(width, height);
+            if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
+            window_.swapBuffers();
+        }
+        return 0;
+    }
+
+private:
+    // ---- hot reload ----
+    void pollShaderChanges() {
+        if (!watcher_) return;
+        std::vector<std::filesystem::path> changed = watcher_->poll();
+        if (changed.empty()) return;
+        for (const auto& f : changed) log::info("view: shader changed: ", f.string());
+        reloadShaders(changed, false);
+    }
+
+    // Rebuilds the programs using `changed` (or all, for F5). Errors stay in the overlay until fixed.
+    void reloadShaders(const std::vector<std::filesystem::path>& changed, bool all) {
+        std::vector<std::filesystem::path> files = changed;
+        if (all) {
+            files = renderer_->shaderDependencies();
+            files.insert(files.end(), uiRenderer_->dependencies().begin(), uiRenderer_->dependencies().end());
+        }
+        Stopwatch clock;
+        std::vector<std::string> rebuilt = renderer_->reloadChangedPrograms(files);
+        try {
+            if (uiRenderer_->reloadIfChanged(files)) rebuilt.push_back("ui");
+            uiError_.clear();
+        } catch (const std::exception& e) {
+            uiError_ = e.what();
+        }
+        if (!rebuilt.empty()) {
+            std::string names;
+            for (const auto& n : rebuilt) names += (names.empty() ? "" : ", ") + n;
+            log::info("view: rebuilt ", names, " in ", formatMs(clock.elapsedMs()), " ms");
+            showMessage("rebuilt " + names);
+        }
+        for (const auto& [program, error] : renderer_->shaderErrors()) log::error("shader ", program, ": ", error);
+        if (!uiError_.empty()) log::error("shader ui: ", uiError_);
+    }
+
+    // ---- input ----
+    ui::Input handleKeys(const WindowEvents& events, int width, int height) {
+        ui::Input input;
+        GLFWwindow* w = window_.glfwHandle();
+        for (const WindowEvents::Key& key : events.keys) {
+            bool shift = key.mods & GLFW_MOD_SHIFT;
+            // Arrows repeat while held (panel navigation); other keys act once per press.
+            switch (key.key) {
+            case GLFW_KEY_UP: input.focusMove -= 1; continue;
+            case GLFW_KEY_DOWN: input.focusMove += 1; continue;
+            case GLFW_KEY_LEFT: input.adjust -= 1; continue;
+            case GLFW_KEY_RIGHT: input.adjust += 1; continue;
+            default: break;
+            }
+            if (key.repeat) continue;
+            switch (key.key) {
+            case GLFW_KEY_ENTER:
+            case GLFW_KEY_KP_ENTER: input.activate = true; break;
+            case GLFW_KEY_ESCAPE:
+                if (captured_) setCaptured(false);
+                else window_.requestClose();
+                break;
+            case GLFW_KEY_F5: reloadShaders({}, true); break;
+            case GLFW_KEY_F12: pendingScreenshot_ = shift ? 2 : 1; break;
+            case GLFW_KEY_H: uiHidden_ = !uiHidden_; break;
+            case GLFW_KEY_C: setCaptured(!captured_); break;
+            case GLFW_KEY_V:
+                controls_.vsync = !controls_.vsync;
+                window_.setVsync(controls_.vsync);
+                break;
+            case GLFW_KEY_P: toggleWalkthrough(); break;
+            case GLFW_KEY_M: cycleMethod(shift ? -1 : 1); break;
+            case GLFW_KEY_N: cycleDebugView(shift ? -1 : 1); break;
+            default:
+                if (key.key >= GLFW_KEY_1 && key.key <= GLFW_KEY_9) jumpToCamera(key.key - GLFW_KEY_1);
+                break;
+            }
+        }
+        // Mouse in framebuffer pixels (the window size differs from the framebuffer on scaled displays).
+        double cx = 0, cy = 0;
+        window_.cursorPosition(cx, cy);
+        int ww = 1, wh = 1;
+        window_.windowSize(ww, wh);
+        bool looking = captured_ || rightLook_;
+        if (!looking) {
+            input.mouse = {float(cx * width / std::max(ww, 1)), float(cy * height / std::max(wh, 1))};
+            input.mouseDown = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+            input.mousePressed = events.leftPressed;
+            input.rightPressed = events.rightPressed;
+            input.scroll = float(events.scrollY);
+        }
+        return input;
+    }
+
+    void setCaptured(bool captured) {
+        captured_ = captured;
+        window_.setCursorCaptured(captured_ || rightLook_);
+        lookStarted_ = false;
+    }
+
+    void moveCamera(const WindowEvents& events, float dt) {
+        GLFWwindow* w = window_.glfwHandle();
+        // Right button held outside the panel: mouse look (the cursor is hidden while it is held).
+        bool rightDown = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        if (events.rightPressed && !(showUi() && ui_.mouseOverUi()) && !rightLook_) {
+            rightLook_ = true;
+            window_.setCursorCaptured(true);
+            lookStarted_ = false;
+        }
+        if (rightLook_ && !rightDown) {
+            rightLook_ = false;
+            window_.setCursorCaptured(captured_);
+        }
+        double cx = 0, cy = 0;
+        window_.cursorPosition(cx, cy);
+        if (captured_ || rightLook_) {
+            if (lookStarted_ && (cx != lastCursor_.x || cy != lastCursor_.y)) {
+                fly_.turn(float(cx - lastCursor_.x) * kLookRadiansPerPixel, -float(cy - lastCursor_.y) * kLookRadiansPerPixel);
+                stopWalkthrough();
+            }
+            lookStarted_ = true;
+        }
+        lastCursor_ = {cx, cy};
+
+        if (events.scrollY != 0.0 && !(showUi() && ui_.mouseOverUi())) {
+            ParamSpec speed = ui::moveSpeedSpec();
+            controls_.moveSpeed = std::clamp(controls_.moveSpeed * std::pow(kWheelSpeedFactor, float(events.scrollY)),
+                                             speed.minValue, speed.maxValue);
+        }
+        auto held = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+        glm::vec3 direction{held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q),
+                            held(GLFW_KEY_W) - held(GLFW_KEY_S)};
+        if (direction != glm::vec3(0.0f)) {
+            float speed = controls_.moveSpeed;
+            if (held(GLFW_KEY_LEFT_SHIFT) + held(GLFW_KEY_RIGHT_SHIFT) > 0.0f) speed *= kShiftSpeedFactor;
+            fly_.move(glm::normalize(direction) * speed * dt);
+            stopWalkthrough();
+        }
+        if (controls_.walkthroughPlaying) {
+            walkthroughTime_ += dt;
+            fly_.set(path_->at(walkthroughTime_));
+            if (walkthroughTime_ >= path_->duration()) controls_.walkthroughPlaying = false;
+        }
+    }
+
+    void toggleWalkthrough() {
+        if (controls_.walkthroughPlaying) { stopWalkthrough(); return; }
+        // The scene's cameras in order (an explicit walkthrough list on Scene would replace this).
+        path_ = std::make_unique<ui::CameraPath>(baseScene_.cameras, std::max(controls_.moveSpeed, 0.2f));
+        if (path_->empty()) return;
+        walkthroughTime_ = 0.0f;
+        controls_.walkthroughPlaying = true;
+        showMessage("walkthrough: " + std::to_string(baseScene_.cameras.size()) + " cameras, " +
+                    formatMs(path_->duration()) + " s");
+    }
+    void stopWalkthrough() { controls_.walkthroughPlaying = false; }
+
+    void jumpToCamera(int index) {
+        if (index < 0 || index >= int(baseScene_.cameras.size())) return;
+        stopWalkthrough();
+        fly_.set(baseScene_.cameras[size_t(index)]);
+        showMessage("camera " + baseScene_.cameras[size_t(index)].name);
+    }
+
+    void cycleMethod(int step) {
+        const auto& methods = glintMethods();
+        int n = int(methods.size()), current = 0;
+        for (int i = 0; i < n; ++i)
+            if (methods[size_t(i)].id == renderer_->settings().method) current = i;
+        RenderSettings next = renderer_->settings();
+        next.method = methods[size_t(((current + step) % n + n) % n)].id;
+        applySettings(next);
+        showMessage("method " + renderer_->settings().method);
+    }
+
+    void cycleDebugView(int step) {
+        const auto& views = aovTable();
+        int n = int(views.size()), current = 0;
+        for (int i = 0; i < n; ++i)
+            if (views[size_t(i)].viewId == renderer_->settings().debugView) current = i;
+        RenderSettings next = renderer_->settings();
+        const AovInfo& view = views[size_t(((current + step) % n + n) % n)];
+        next.debugView = view.viewId;
+        applySettings(next);
+        showMessage("debug view " + view.name + ": " + view.meaning);
+    }
+
+    // Live edits: renderer settings (method, parameters, view) and the scene's material/light overrides.
+    void applySettings(const RenderSettings& next) {
+        bool commonChanged = next.common != renderer_->settings().common;
+        try {
+            renderer_->setSettings(next);
+            methodError_.clear();
+        } catch (const std::exception& e) {
+            methodError_ = "method " + next.method + ": " + e.what();
+            log::error("view: ", methodError_);
+        }
+        if (commonChanged) {
+            scene_ = baseScene_;
+            applySceneOverrides(renderer_->settings(), scene_);
+            gpuScene_->updateMaterialsAndLights(scene_);
+        }
+    }
+
+    // ---- UI ----
+    bool showUi() const { return !uiHidden_; }
+
+    void showMessage(const std::string& text) {
+        message_ = text;
+        messageUntil_ = now_ + kMessageSeconds;
+    }
+
+    std::vector<std::string> errors() const {
+        std::vector<std::string> all;
+        for (const auto& [program, error] : renderer_->shaderErrors()) all.push_back(error + "  [" + program + "]");
+        if (!uiError_.empty()) all.push_back(uiError_ + "  [ui]");
+        if (!methodError_.empty()) all.push_back(methodError_);
+        return all;
+    }
+
+    void buildUi(const ui::Input& input, int width, int height) {
+        int scale = height >= 600 ? 2 : 1;
+        ui_.begin(input, width, height, scale);
+        float line = ui_.lineHeight();
+        float margin = float(4 * scale);
+        size_t columns = size_t(std::max(10.0f, (float(width) - 2.0f * margin) / float(ui::kCellWidth * scale)));
+
+        // Shader errors show even with the UI hidden: the user is looking at the picture, not at the log.
+        std::vector<std::string> lines;
+        for (const std::string& error : errors())
+            for (const std::string& l : wrapText("SHADER ERROR " + error, columns)) lines.push_back(l);
+        float statsHeight = showUi() ? 2.0f * line + 2.0f * margin : 0.0f;
+        if (!lines.empty()) {
+            float boxHeight = float(lines.size()) * line + 2.0f * margin;
+            float top = float(height) - statsHeight - boxHeight;
+            ui_.box({0.0f, top, float(width), boxHeight}, ui::palette::kErrorBack);
+            for (size_t i = 0; i < lines.size(); ++i)
+                ui_.textAt({margin, top + margin + float(i) * line}, lines[i], ui::palette::kError);
+        }
+        if (showUi()) {
+            RenderSettings edited = renderer_->settings();
+            ui::PanelResult result =
+                ui::settingsPanel(ui_, edited, controls_, margin, margin, float(height) - statsHeight - 2.0f * margin);
+            if (result.settingsChanged) applySettings(edited);
+            if (result.vsyncChanged) window_.setVsync(controls_.vsync);
+            if (result.cameraRequested >= 0) jumpToCamera(result.cameraRequested);
+            if (result.toggleWalkthrough) toggleWalkthrough();
+            if (result.reloadShaders) reloadShaders({}, true);
+            if (result.screenshot) pendingScreenshot_ = 1;
+            drawStats(width, height, statsHeight, margin, line);
+        }
+        ui_.end();
+    }
+
+    void drawStats(int width, int height, float statsHeight, float margin, float line) {
+        float top = float(height) - statsHeight;
+        ui_.box({0.0f, top, float(width), statsHeight}, {0, 0, 0, 200});
+        std::string first = "frame " + formatMs(frameMs_) + " ms (" + std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) +
+                            " fps)  GPU timers:";
+        for (const PassTiming& t : renderer_->passTimings()) first += " " + t.name + " " + formatMs(t.gpuMs);
+        first += renderer_->passTimings().empty() ? " (pending)" : " ms";
+        const Camera& c = fly_.camera();
+        char where[160];
+        std::snprintf(where, sizeof where, "pos %.2f %.2f %.2f  speed %.2g m/s  vsync %s%s", c.position.x, c.position.y,
+                      c.position.z, double(controls_.moveSpeed), controls_.vsync ? "on" : "off",
+                      captured_ ? "  mouse captured (C/Esc)" : "");
+        std::string second = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe) | " : "";
+        second += where;
+        if (now_ < messageUntil_) {
+            // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner.
+            float textW = float(ui::textWidth(message_, ui_.scale()));
+            float boxW = std::min(textW + 2.0f * margin, float(width) * 0.6f);
+            ui_.box({float(width) - boxW - margin, margin, boxW, line + margin}, {0, 0, 0, 200});
+            ui_.textAt({float(width) - boxW, margin + margin * 0.5f}, message_, ui::palette::kHeading, boxW - margin);
+        }
+        ui_.textAt({margin, top + margin}, first, ui::palette::kText, float(width) - 2.0f * margin);
+        ui_.textAt({margin, top + margin + line}, second, ui::palette::kDim, float(width) - 2.0f * margin);
+    }
+
+    // ---- frame ----
+    void drawFrame(int width, int height) {
+        renderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
+        present_.resize(width, height);
+        glBlitNamedFramebuffer(renderer_->targets().displayFramebuffer(), present_.framebuffer(), 0, 0, width, height,
+                               0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer());
+        uiRenderer_->draw(ui_.drawList(), width, height);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBlitNamedFramebuffer(present_.framebuffer(), 0, 0, 0, width, height, 0, 0, width, height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        if (pendingScreenshot_) {
+            writeScreenshot(nextScreenshotName(pendingScreenshot_ == 2 ? ".exr" : ".png"));
+            pendingScreenshot_ = 0;
+        }
+    }
+
+    std::string nextScreenshotName(const char* extension) {
+        for (int i = 1;; ++i) {
+            char name[256];
+            std::snprintf(name, sizeof name, "glimmer-%s-%03d%s", baseScene_.name.c_str(), i, extension);
+            if (!std::filesystem::exists(name)) return name;
+        }
+    }
+
+    // PNG: the window image (with the UI when shown). EXR: the renderer's HDR radiance (or debug view), linear.
+    void writeScreenshot(const std::string& path) {
+        int width = renderer_->targets().width(), height = renderer_->targets().height();
+        if (imageFormatForPath(path, "--screenshot") == ImageFormat::Exr) {
+            std::vector<float> hdr = renderer_->readHdr();
+            writeExr(path, hdr.data(), width, height);
+        } else {
+            std::vector<uint8_t> pixels = present_.read();
+            writePng(path, pixels.data(), width, height);
+        }
+        if (options_.frameLimit > 0) std::printf("%s\n", path.c_str());
+        log::info("view: wrote ", path);
+        showMessage("wrote " + path);
+    }
+
+    ViewOptions options_;
+    Scene baseScene_, scene_;
+    GlfwWindow window_;
+    std::unique_ptr<GpuScene> gpuScene_;
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<ui::UiRenderer> uiRenderer_;
+    std::unique_ptr<FileWatcher> watcher_;
+    PresentTarget present_;
+    ui::Context ui_;
+    ui::WindowControls controls_;
+    ui::FlyCamera fly_;
+    std::unique_ptr<ui::CameraPath> path_;
+    float walkthroughTime_ = 0.0f;
+    bool uiHidden_ = false, captured_ = false, rightLook_ = false, lookStarted_ = false, softwareRenderer_ = false;
+    glm::dvec2 lastCursor_{0.0};
+    double frameMs_ = 0.0, now_ = 0.0, messageUntil_ = 0.0;
+    std::string message_, uiError_, methodError_;
+    int pendingScreenshot_ = 0;
+};
+
+}  // namespace
+
+int runWalkthroughWindow(const ViewOptions& options) {
+    Walkthrough walkthrough(options);
+    return walkthrough.run();
+}
+
+}  // namespace glimmer

@@ -1,0 +1,21 @@
+// The walkthrough window behind `glimmer view`: input (WASD + mouse look, keys), the control panel, shader hot
+// reload, screenshots, and one frame = Renderer::render + the UI overlay presented through the window.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "render/offscreen.h"
+
+namespace glimmer {
+
+struct ViewOptions {
+    RenderRequest request;                  // scene, camera, size, method, --set, --aov, --shader-dir
+    int frameLimit = 0;                     // > 0: render this many frames, write the screenshot, exit
+    std::optional<std::string> screenshot;  // .png (window image) or .exr (HDR radiance / debug view)
+    bool hideUi = false;
+    bool vsync = true;
+};
+
+int runWalkthroughWindow(const ViewOptions& options);
+
+}  // namespace glimmer

@@ -1,0 +1,105 @@
+#include "ui/settings_panel.h"
+
+#include <algorithm>
+
+#include "render/aov.h"
+
+namespace glimmer::ui {
+
+ParamSpec moveSpeedSpec() {
+    ParamSpec spec;
+    spec.name = "move speed m/s";
+    spec.defaultValue = 1.0f;
+    spec.minValue = 0.01f;
+    spec.maxValue = 100.0f;
+    spec.logScale = true;
+    return spec;
+}
+
+std::string commonGroupTitle(const std::string& prefix) {
+    if (prefix.empty()) return "Image";
+    if (prefix == "light") return "Lights";
+    if (prefix == "env") return "Environment";
+    if (prefix == "material") return "Material overrides (all)";
+    return prefix;
+}
+
+static std::string prefixOf(const std::string& name) {
+    size_t dot = name.find('.');
+    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+}
+
+PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls& window, float x, float y,
+                          float maxHeight, const std::vector<GlintMethod>& methods) {
+    PanelResult result;
+    ui.beginPanel("settings", x, y, kPanelWidthChars, maxHeight);
+    ui.heading("GLIMMER  (H hides, arrows edit)");
+
+    // Method selector and the method's own parameters, generated from its ParamSpec list.
+    std::vector<std::string> ids;
+    int methodIndex = 0;
+    for (size_t i = 0; i < methods.size(); ++i) {
+        ids.push_back(methods[i].id);
+        if (methods[i].id == settings.method) methodIndex = int(i);
+    }
+    if (!ids.empty() && ui.selector("method", ids, methodIndex)) {
+        settings.method = ids[size_t(methodIndex)];
+        result.settingsChanged = result.methodChanged = true;
+    }
+    if (!methods.empty()) {
+        const GlintMethod& method = methods[size_t(methodIndex)];
+        ui.label(method.title);
+        if (method.params.empty()) ui.label("(no parameters)");
+        for (const ParamSpec& spec : method.params) {
+            float value = paramOr(settings.methodValues(method.id), spec);
+            Edit edit = ui.slider(spec.name, spec, value);
+            if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;
+            if (edit == Edit::Reset) settings.methods[method.id].erase(spec.name);
+            result.settingsChanged |= edit != Edit::None;
+        }
+    }
+
+    std::vector<std::string> views;
+    int viewIndex = 0;
+    for (const AovInfo& aov : aovTable()) {
+        if (aov.viewId == settings.debugView) viewIndex = int(views.size());
+        views.push_back(aov.name);
+    }
+    if (ui.selector("debug view", views, viewIndex)) {
+        settings.debugView = aovTable()[size_t(viewIndex)].viewId;
+        result.settingsChanged = true;
+    }
+
+    // Common parameters, grouped by prefix in the order the table first names each group.
+    std::vector<std::string> groups;
+    for (const CommonParam& p : commonParams())
+        if (std::find(groups.begin(), groups.end(), prefixOf(p.spec.name)) == groups.end())
+            groups.push_back(prefixOf(p.spec.name));
+    for (const std::string& group : groups) {
+        ui.heading(commonGroupTitle(group));
+        for (const CommonParam& p : commonParams()) {
+            if (prefixOf(p.spec.name) != group) continue;
+            bool fromScene = p.sceneDefault && !settings.isSet(p.spec.name);
+            float value = settings.common_(p.spec.name);
+            Edit edit = ui.slider(p.spec.name, p.spec, value, fromScene ? "scene" : nullptr);
+            if (edit == Edit::Changed) settings.common[p.spec.name] = value;
+            if (edit == Edit::Reset) settings.common.erase(p.spec.name);
+            result.settingsChanged |= edit != Edit::None;
+        }
+    }
+
+    ui.heading("Window");
+    result.vsyncChanged = ui.checkbox("vsync (V)", window.vsync);
+    ParamSpec speed = moveSpeedSpec();
+    if (ui.slider(speed.name, speed, window.moveSpeed) == Edit::Reset) window.moveSpeed = speed.defaultValue;
+    for (size_t i = 0; i < window.cameraNames.size() && i < 9; ++i)
+        if (ui.button(std::to_string(i + 1) + ": camera " + window.cameraNames[i])) result.cameraRequested = int(i);
+    if (ui.button(window.walkthroughPlaying ? "stop walkthrough (P)" : "play walkthrough (P)"))
+        result.toggleWalkthrough = true;
+    if (ui.button("reload shaders (F5)")) result.reloadShaders = true;
+    if (ui.button("screenshot (F12)")) result.screenshot = true;
+    ui.endPanel();
+    return result;
+}
+
+}  // namespace glimmer::ui

@@ -1,0 +1,43 @@
+// The walkthrough window's control panel, generated from the tables: a method selector, one slider per
+// parameter of the current method (ParamSpec ranges, integer, logScale, choices), the common parameters grouped
+// by prefix (image, light, env, material overrides), the debug-view selector and the window's own controls.
+// A method added to glintMethods() or a parameter added to commonParams() gets its widgets with no UI code.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "glints/methods.h"
+#include "render/settings.h"
+#include "ui/ui.h"
+
+namespace glimmer::ui {
+
+// Window state shown and edited by the panel.
+struct WindowControls {
+    bool vsync = true;
+    float moveSpeed = 1.0f;                 // metres per second
+    std::vector<std::string> cameraNames;   // scene cameras, jumped to with keys 1..9
+    bool walkthroughPlaying = false;
+};
+
+struct PanelResult {
+    bool settingsChanged = false;   // anything in RenderSettings (method, parameters, debug view)
+    bool methodChanged = false;
+    int cameraRequested = -1;       // index into cameraNames
+    bool toggleWalkthrough = false;
+    bool reloadShaders = false;
+    bool vsyncChanged = false;
+    bool screenshot = false;
+};
+
+constexpr int kPanelWidthChars = 34;
+// The speed slider's range (also used by the wheel).
+ParamSpec moveSpeedSpec();
+
+PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls& window, float x, float y,
+                          float maxHeight, const std::vector<GlintMethod>& methods = glintMethods());
+
+// Heading for a common parameter group ("" -> "Image", "light" -> "Lights", ...); unknown prefixes as is.
+std::string commonGroupTitle(const std::string& prefix);
+
+}  // namespace glimmer::ui

@@ -1,0 +1,430 @@
+// UI without GL: font data, slider mapping, widget layout and hit-testing driven by synthetic input, the
+// generated settings panel (method selector, per-method sliders, common parameters), camera control.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "render/settings.h"
+#include "ui/camera_controller.h"
+#include "ui/font.h"
+#include "ui/settings_panel.h"
+#include "ui/ui.h"
+
+namespace glimmer::ui {
+namespace {
+
+constexpr int kScreenW = 1280, kScreenH = 720;
+
+// Runs one frame of a panel built by `build` with `input`.
+template <class Build>
+void frame(Context& ui, const Input& input, Build&& build, int scale = 1, float maxHeight = 700.0f) {
+    ui.begin(input, kScreenW, kScreenH, scale);
+    ui.beginPanel("test", 10.0f, 20.0f, 30, maxHeight);
+    build();
+    ui.endPanel();
+    ui.end();
+}
+
+Input clickAt(glm::vec2 p) {
+    Input in;
+    in.mouse = p;
+    in.mousePressed = true;
+    in.mouseDown = true;
+    return in;
+}
+
+ParamSpec linearSpec() {
+    ParamSpec s;
+    s.name = "linear";
+    s.minValue = 0.0f;
+    s.maxValue = 10.0f;
+    s.defaultValue = 5.0f;
+    return s;
+}
+
+TEST(UiFont, EveryPrintableGlyphIsDistinctAndLit) {
+    std::set<GlyphRows> seen;
+    for (int c = kFirstGlyph + 1; c < kFirstGlyph + kGlyphCount; ++c) {
+        const GlyphRows& rows = glyphRows(char(c));
+        int lit = 0;
+        for (uint8_t r : rows) lit += __builtin_popcount(r);
+        EXPECT_GT(lit, 0) << "glyph '" << char(c) << "' is empty";
+        EXPECT_TRUE(seen.insert(rows).second) << "glyph '" << char(c) << "' duplicates another";
+        for (uint8_t r : rows) EXPECT_LT(r, 1u << kGlyphWidth) << "glyph '" << char(c) << "' is wider than 5";
+    }
+    for (uint8_t r : glyphRows(' ')) EXPECT_EQ(r, 0);
+    EXPECT_EQ(glyphRows('\t'), glyphRows('?'));
+}
+
+TEST(UiFont, PackedTableMatchesRowsInTheShaderLayout) {
+    auto packed = packedGlyphTable();
+    for (int g = 0; g < kGlyphCount; ++g)
+        for (int row = 0; row < kCellHeight; ++row)
+            EXPECT_EQ((packed[size_t(g * 2 + row / 4)] >> (8 * (row % 4))) & 0xffu,
+                      glyphRows(char(g + kFirstGlyph))[size_t(row)]);
+    EXPECT_EQ(textWidth("", 2), 0);
+    EXPECT_EQ(textWidth("ab", 2), (2 * kCellWidth - 1) * 2);
+}
+
+TEST(UiDrawList, TextEmitsOneQuadPerVisibleCharacter) {
+    DrawList list;
+    list.text({100, 50}, "a b", palette::kText, 2);
+    ASSERT_EQ(list.quads().size(), 2u);
+    EXPECT_EQ(list.quads()[0].glyph, 'a');
+    EXPECT_FLOAT_EQ(list.quads()[1].rect.x, 100.0f + 2 * kCellWidth * 2);
+    EXPECT_FLOAT_EQ(list.quads()[1].rect.h, float(kCellHeight * 2));
+}
+
+TEST(UiSlider, MappingIsLinearLogarithmicAndSnapsIntegers) {
+    ParamSpec lin = linearSpec();
+    EXPECT_FLOAT_EQ(sliderValue(lin, 0.25f), 2.5f);
+    EXPECT_FLOAT_EQ(sliderFraction(lin, 7.5f), 0.75f);
+    EXPECT_FLOAT_EQ(sliderValue(lin, -1.0f), 0.0f);
+    EXPECT_FLOAT_EQ(sliderValue(lin, 2.0f), 10.0f);
+
+    ParamSpec log;
+    log.minValue = 0.01f;
+    log.maxValue = 100.0f;
+    log.logScale = true;
+    EXPECT_NEAR(sliderValue(log, 0.5f), 1.0f, 1e-5f);
+    EXPECT_NEAR(sliderValue(log, 0.75f), 10.0f, 1e-4f);
+    EXPECT_NEAR(sliderFraction(log, 0.1f), 0.25f, 1e-6f);
+    for (float t : {0.0f, 0.1f, 0.33f, 0.9f, 1.0f}) EXPECT_NEAR(sliderFraction(log, sliderValue(log, t)), t, 1e-5f);
+
+    ParamSpec logFromZero = log;  // a zero minimum stays reachable at the left end
+    logFromZero.minValue = 0.0f;
+    logFromZero.maxValue = 1e6f;
+    EXPECT_EQ(sliderValue(logFromZero, 0.0f), 0.0f);
+    EXPECT_FLOAT_EQ(logFloor(logFromZero), 1e-3f);
+    EXPECT_NEAR(sliderValue(logFromZero, 1.0f / 3.0f), 1.0f, 1e-4f);
+
+    ParamSpec integer = lin;
+    integer.integer = true;
+    EXPECT_EQ(sliderValue(integer, 0.26f), 3.0f);
+    EXPECT_EQ(sliderStep(integer, 3.0f, 1), 4.0f);
+    EXPECT_EQ(sliderStep(integer, 10.0f, 1), 10.0f);
+    EXPECT_NEAR(sliderStep(lin, 5.0f, -1), 4.9f, 1e-5f);
+    EXPECT_EQ(formatSliderValue(integer, 3.0f), "3");
+    EXPECT_EQ(formatSliderValue(lin, 0.123456f), "0.1235");
+}
+
+TEST(UiSlider, ClickAtAKnownPlaceSetsTheExpectedValue) {
+    Context ui;
+    ParamSpec spec = linearSpec();
+    float value = 5.0f;
+    frame(ui, {}, [&] { ui.slider("linear", spec, value); });
+    auto rect = ui.widgetRect("linear");
+    ASSERT_TRUE(rect);
+    EXPECT_GT(rect->w, 100.0f);
+
+    Edit edit = Edit::None;
+    frame(ui, clickAt(rect->at(0.25f, 0.5f)), [&] { edit = ui.slider("linear", spec, value); });
+    EXPECT_EQ(edit, Edit::Changed);
+    EXPECT_NEAR(value, 2.5f, 1e-5f);
+    EXPECT_TRUE(ui.mouseOverUi());
+
+    // Dragging keeps editing the grabbed slider, even outside its row.
+    Input drag;
+    drag.mouse = {rect->at(0.75f, 0.0f).x, rect->y + 300.0f};
+    drag.mouseDown = true;
+    frame(ui, drag, [&] { ui.slider("linear", spec, value); });
+    EXPECT_NEAR(value, 7.5f, 1e-5f);
+
+    // Released: moving the mouse changes nothing.
+    Input hover;
+    hover.mouse = rect->at(0.1f, 0.5f);
+    frame(ui, hover, [&] { edit = ui.slider("linear", spec, value); });
+    EXPECT_EQ(edit, Edit::None);
+    EXPECT_NEAR(value, 7.5f, 1e-5f);
+
+    // Right click asks for a reset and leaves the value to the caller.
+    Input right;
+    right.mouse = rect->at(0.5f, 0.5f);
+    right.rightPressed = true;
+    frame(ui, right, [&] { edit = ui.slider("linear", spec, value); });
+    EXPECT_EQ(edit, Edit::Reset);
+    EXPECT_NEAR(value, 7.5f, 1e-5f);
+}
+
+TEST(UiSlider, LogScaleSliderClickMovesInLogSpace) {
+    Context ui;
+    ParamSpec spec;
+    spec.name = "density";
+    spec.minValue = 1.0f;
+    spec.maxValue = 1e4f;
+    spec.logScale = true;
+    float value = 1.0f;
+    frame(ui, {}, [&] { ui.slider("density", spec, value); });
+    auto rect = ui.widgetRect("density");
+    ASSERT_TRUE(rect);
+    frame(ui, clickAt(rect->at(0.5f, 0.5f)), [&] { ui.slider("density", spec, value); });
+    EXPECT_NEAR(value, 100.0f, 100.0f * 1e-4f);
+    frame(ui, clickAt(rect->at(0.25f, 0.5f)), [&] { ui.slider("density", spec, value); });
+    EXPECT_NEAR(value, 10.0f, 10.0f * 1e-4f);
+}
+
+TEST(UiWidgets, ClicksOutsideWidgetsChangeNothing) {
+    Context ui;
+    ParamSpec spec = linearSpec();
+    float value = 5.0f;
+    bool box = false;
+    auto build = [&] {
+        ui.slider("linear", spec, value);
+        ui.checkbox("box", box);
+    };
+    frame(ui, {}, build);
+    frame(ui, clickAt({900.0f, 400.0f}), build);
+    EXPECT_EQ(value, 5.0f);
+    EXPECT_FALSE(box);
+    EXPECT_FALSE(ui.mouseOverUi());
+    auto rect = ui.widgetRect("box");
+    frame(ui, clickAt(rect->at(0.9f, 0.5f)), build);
+    EXPECT_TRUE(box);
+}
+
+TEST(UiWidgets, SelectorStepsBackOnTheLeftHalfAndForwardOnTheRight) {
+    Context ui;
+    std::vector<std::string> options = {"a", "b", "c"};
+    int index = 0;
+    bool changed = false;
+    auto build = [&] { changed = ui.selector("pick", options, index); };
+    frame(ui, {}, build);
+    Rect row = *ui.widgetRect("pick");
+    glm::vec2 right = row.at(0.95f, 0.5f), left = row.at(0.5f, 0.5f);  // value area is the right 55%
+    frame(ui, clickAt(right), build);
+    EXPECT_TRUE(changed);
+    EXPECT_EQ(index, 1);
+    frame(ui, clickAt(right), build);
+    frame(ui, clickAt(right), build);
+    EXPECT_EQ(index, 0);  // wraps
+    frame(ui, clickAt(left), build);
+    EXPECT_EQ(index, 2);
+}
+
+TEST(UiWidgets, KeyboardFocusAndAdjustWork) {
+    Context ui;
+    ParamSpec spec = linearSpec();
+    spec.integer = true;
+    float first = 1.0f, second = 1.0f;
+    bool pressed = false;
+    auto build = [&] {
+        ui.slider("first", spec, first);
+        ui.slider("second", spec, second);
+        pressed = ui.button("go");
+    };
+    frame(ui, {}, build);
+    Input down;
+    down.focusMove = 1;
+    frame(ui, down, build);  // focus: first
+    frame(ui, down, build);  // focus: second
+    EXPECT_EQ(ui.focusIndex(), 1);
+    Input adjust;
+    adjust.adjust = 1;
+    frame(ui, adjust, build);
+    EXPECT_EQ(first, 1.0f);
+    EXPECT_EQ(second, 2.0f);
+    frame(ui, down, build);
+    Input enter;
+    enter.activate = true;
+    frame(ui, enter, build);
+    EXPECT_TRUE(pressed);
+    frame(ui, down, build);  // wraps to the first widget
+    EXPECT_EQ(ui.focusIndex(), 0);
+
+    Context fresh;  // several presses within one (slow) frame all count
+    auto buildFresh = [&] {
+        fresh.slider("first", spec, first);
+        fresh.slider("second", spec, second);
+        fresh.button("go");
+    };
+    frame(fresh, {}, buildFresh);
+    Input twice;
+    twice.focusMove = 2;
+    twice.adjust = 3;
+    frame(fresh, twice, buildFresh);
+    EXPECT_EQ(fresh.focusIndex(), 1);
+    EXPECT_EQ(second, 5.0f);
+}
+
+TEST(UiWidgets, TallPanelsScrollAndHideRowsOutOfView) {
+    Context ui;
+    ParamSpec spec = linearSpec();
+    std::vector<float> values(40, 5.0f);
+    auto build = [&] {
+        for (size_t i = 0; i < values.size(); ++i) ui.slider("s" + std::to_string(i), spec, values[i]);
+    };
+    float maxHeight = 200.0f;
+    frame(ui, {}, build, 1, maxHeight);
+    Rect last = *ui.widgetRect("s39");
+    EXPECT_GT(last.y, 20.0f + maxHeight);  // laid out below the visible area
+    frame(ui, clickAt(last.at(0.5f, 0.5f)), build, 1, maxHeight);
+    EXPECT_EQ(values[39], 5.0f);  // not hittable while hidden
+    Input wheel;
+    wheel.mouse = {50.0f, 100.0f};
+    wheel.scroll = -100.0f;  // towards the user: scroll down to the end
+    frame(ui, wheel, build, 1, maxHeight);
+    frame(ui, {}, build, 1, maxHeight);
+    Rect scrolled = *ui.widgetRect("s39");
+    EXPECT_LE(scrolled.y + scrolled.h, 20.0f + maxHeight);
+    frame(ui, clickAt(scrolled.at(0.0f, 0.5f)), build, 1, maxHeight);
+    EXPECT_EQ(values[39], 0.0f);
+}
+
+// A made-up method table: the panel must give any method sliders from its ParamSpecs alone.
+std::vector<GlintMethod> fakeMethods() {
+    GlintMethod smooth{"smooth", "Smooth", "GLINT_METHOD_SMOOTH", "glints/smooth.glsl", "-", {}};
+    ParamSpec count{"count", 2.0f, 1.0f, 8.0f, "an integer", {}, true};
+    ParamSpec density{"density", 10.0f, 1.0f, 1e4f, "a density", {}, false, true};
+    ParamSpec mode{"mode", 0.0f, 0.0f, 2.0f, "an enumeration", {"one", "two", "three"}};
+    GlintMethod fake{"fake", "Fake method", "GLINT_METHOD_FAKE", "glints/fake.glsl", "-", {count, density, mode}};
+    return {smooth, fake};
+}
+
+PanelResult panelFrame(Context& ui, const Input& input, RenderSettings& settings, WindowControls& window,
+                       const std::vector<GlintMethod>& methods) {
+    ui.begin(input, kScreenW, kScreenH, 2);
+    PanelResult r = settingsPanel(ui, settings, window, 8.0f, 8.0f, 2000.0f, methods);
+    ui.end();
+    return r;
+}
+
+TEST(UiSettingsPanel, MethodSelectorSwitchesMethodAndGeneratesItsSliders) {
+    Context ui;
+    RenderSettings settings;
+    WindowControls window;
+    auto methods = fakeMethods();
+    panelFrame(ui, {}, settings, window, methods);
+    EXPECT_FALSE(ui.widgetRect("density"));
+    Rect selector = *ui.widgetRect("method");
+    PanelResult r = panelFrame(ui, clickAt(selector.at(0.95f, 0.5f)), settings, window, methods);
+    EXPECT_TRUE(r.methodChanged);
+    EXPECT_TRUE(r.settingsChanged);
+    EXPECT_EQ(settings.method, "fake");
+
+    panelFrame(ui, {}, settings, window, methods);
+    ASSERT_TRUE(ui.widgetRect("count"));
+    ASSERT_TRUE(ui.widgetRect("mode"));
+    Rect density = *ui.widgetRect("density");
+    r = panelFrame(ui, clickAt(density.at(0.75f, 0.5f)), settings, window, methods);
+    EXPECT_TRUE(r.settingsChanged);
+    EXPECT_FALSE(r.methodChanged);
+    EXPECT_NEAR(settings.methods["fake"]["density"], 1000.0f, 1000.0f * 1e-4f);
+
+    Rect count = *ui.widgetRect("count");
+    panelFrame(ui, clickAt(count.at(0.5f, 0.5f)), settings, window, methods);
+    EXPECT_EQ(settings.methods["fake"]["count"], 5.0f);  // 1 + 0.5 * 7 = 4.5 rounds to 5 (integer)
+
+    Rect mode = *ui.widgetRect("mode");
+    panelFrame(ui, clickAt(mode.at(0.95f, 0.5f)), settings, window, methods);
+    EXPECT_EQ(settings.methods["fake"]["mode"], 1.0f);
+
+    // Right click resets to the default: the value is removed from the settings.
+    Input right;
+    right.mouse = density.at(0.2f, 0.5f);
+    right.rightPressed = true;
+    panelFrame(ui, right, settings, window, methods);
+    EXPECT_EQ(settings.methods["fake"].count("density"), 0u);
+}
+
+TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {
+    Context ui;
+    RenderSettings settings;
+    WindowControls window;
+    window.cameraNames = {"front", "side"};
+    auto methods = fakeMethods();
+    panelFrame(ui, {}, settings, window, methods);
+    for (const CommonParam& p : commonParams()) EXPECT_TRUE(ui.widgetRect(p.spec.name)) << p.spec.name;
+
+    const CommonParam* alpha = nullptr;
+    for (const CommonParam& p : commonParams())
+        if (p.spec.name == "material.alpha") alpha = &p;
+    ASSERT_TRUE(alpha);
+    Rect row = *ui.widgetRect("material.alpha");
+    PanelResult r = panelFrame(ui, clickAt(row.at(0.5f, 0.5f)), settings, window, methods);
+    EXPECT_TRUE(r.settingsChanged);
+    ASSERT_TRUE(settings.isSet("material.alpha"));
+    EXPECT_NEAR(settings.common_("material.alpha"), sliderValue(alpha->spec, 0.5f), 1e-6f);
+
+    Rect view = *ui.widgetRect("debug view");
+    panelFrame(ui, clickAt(view.at(0.95f, 0.5f)), settings, window, methods);
+    EXPECT_EQ(settings.debugView, 1);
+
+    Rect camera = *ui.widgetRect("2: camera side");
+    r = panelFrame(ui, clickAt(camera.at(0.5f, 0.5f)), settings, window, methods);
+    EXPECT_EQ(r.cameraRequested, 1);
+    EXPECT_EQ(commonGroupTitle("material"), "Material overrides (all)");
+    EXPECT_EQ(commonGroupTitle("zzz"), "zzz");
+}
+
+TEST(UiCamera, FlyCameraKeepsAnUnmovedCameraExactAndMovesAlongItsAxes) {
+    Camera start;
+    start.position = {0.3f, 1.7f, 2.9f};
+    start.target = {0.1f, 0.2f, -0.4f};
+    FlyCamera fly;
+    fly.set(start);
+    EXPECT_EQ(fly.camera().position, start.position);
+    EXPECT_EQ(fly.camera().target, start.target);
+    glm::vec3 forward = start.forward();
+    fly.move({0.0f, 0.0f, 2.0f});
+    EXPECT_NEAR(glm::length(fly.camera().position - (start.position + 2.0f * forward)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(fly.camera().forward() - forward), 0.0f, 1e-5f);
+    fly.move({0.0f, 1.0f, 0.0f});  // Q/E move along world up
+    EXPECT_NEAR(fly.camera().position.y, start.position.y + 2.0f * forward.y + 1.0f, 1e-5f);
+    fly.set(start);
+    fly.turn(0.0f, 10.0f);  // clamped below the pole
+    EXPECT_NEAR(fly.camera().forward().y, std::sin(glm::radians(89.0f)), 1e-4f);
+    fly.set(start);
+    fly.turn(glm::radians(90.0f), 0.0f);
+    EXPECT_NEAR(glm::dot(fly.camera().forward(), forward), forward.y * forward.y, 1e-4f);  // horizontal parts orthogonal
+}
+
+TEST(UiCamera, TurningACameraThatLooksStraightDownContinuesThePicture) {
+    Camera top;  // as plane90's "top": looking down, screen up = -z
+    top.position = {0, 2, 0};
+    top.target = {0, 0, 0};
+    top.up = {0, 0, -1};
+    FlyCamera fly;
+    fly.set(top);
+    fly.move({1.0f, 0.0f, 0.0f});  // D moves to screen right = +x
+    EXPECT_NEAR(fly.camera().position.x, 1.0f, 1e-6f);
+    fly.set(top);
+    fly.turn(0.0f, 0.1f);  // pitch up tilts the view towards the top of the screen (-z), without spinning
+    glm::vec3 f = fly.camera().forward();
+    EXPECT_LT(f.z, -0.05f);
+    EXPECT_NEAR(f.x, 0.0f, 1e-4f);
+    EXPECT_LT(f.y, -0.9f);
+}
+
+TEST(UiCamera, WalkthroughPathPassesThroughEveryCameraInOrder) {
+    std::vector<Camera> cameras(3);
+    cameras[0].position = {0, 1, 4};
+    cameras[0].target = {0, 0, 0};
+    cameras[1].position = {4, 1, 0};
+    cameras[1].target = {0, 0.5f, 0};
+    cameras[1].verticalFovDegrees = 30.0f;
+    cameras[2].position = {0, 2, -4};
+    cameras[2].target = {1, 0, 0};
+    CameraPath path(cameras, 2.0f, 1.0f);
+    // Segments last their length over the speed: sqrt(32) / 2 and sqrt(33) / 2 seconds.
+    float arrivals[3] = {0.0f, std::sqrt(32.0f) / 2.0f, std::sqrt(32.0f) / 2.0f + std::sqrt(33.0f) / 2.0f};
+    EXPECT_NEAR(path.duration(), arrivals[2], 1e-4f);
+    for (int i = 0; i < 3; ++i) {
+        Camera c = path.at(arrivals[i]);
+        EXPECT_NEAR(glm::length(c.position - cameras[size_t(i)].position), 0.0f, 1e-4f) << i;
+        EXPECT_NEAR(glm::length(c.forward() - cameras[size_t(i)].forward()), 0.0f, 1e-3f) << i;
+        EXPECT_NEAR(c.verticalFovDegrees, cameras[size_t(i)].verticalFovDegrees, 1e-3f);
+    }
+    // Continuous: small time steps give small moves.
+    glm::vec3 previous = path.at(0.0f).position;
+    for (float t = 0.01f; t <= path.duration(); t += 0.01f) {
+        glm::vec3 p = path.at(t).position;
+        EXPECT_LT(glm::length(p - previous), 0.05f) << t;
+        previous = p;
+    }
+    EXPECT_EQ(path.at(1e6f).position, cameras[2].position);
+    EXPECT_TRUE(CameraPath({}).empty());
+}
+
+}  // namespace
+}  // namespace glimmer::ui
