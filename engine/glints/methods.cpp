@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "glints/deliot2023_resources.h"
 
 namespace glimmer {
 
@@ -13,9 +14,25 @@ static GlintMethod smoothMethod() {
             "Cook & Torrance 1982; Walter et al. 2007 (GGX); Beckmann 1963", {}};
 }
 
+// Deliot & Belcour 2023: shaders/glints/deliot2023.glsl; defaults and ranges from methods.md (public ports).
+static GlintMethod deliot2023Method() {
+    return {"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
+            "GLINT_METHOD_DELIOT2023", "glints/deliot2023.glsl",
+            "Deliot & Belcour 2023, Real-time rendering of glinty appearances using distributed binomial laws on "
+            "anisotropic grids, Computer Graphics Forum 42(8)",
+            {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
+             {"microfacet_roughness", 0.005f, 0.001f, 1.0f,
+              "R, ratio of micro- to macro-roughness: lower = fewer, brighter glints (useful 0.005-0.25)", {}, false,
+              true},
+             {"density_randomization", 2.0f, 0.0f, 10.0f, "std. deviation of the per-vertex log density"},
+             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "grid cell size in pixels across the footprint's minor axis"}},
+            createDeliot2023Resources};
+}
+
 const std::vector<GlintMethod>& glintMethods() {
     static const std::vector<GlintMethod> methods = {
         smoothMethod(),
+        deliot2023Method(),
     };
     return methods;
 }

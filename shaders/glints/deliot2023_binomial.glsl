@@ -1,0 +1,63 @@
+// Deliot & Belcour 2023, "Real-time rendering of glinty appearances using distributed binomial laws on
+// anisotropic grids": the random-number plumbing and the gated Gaussian binomial approximation (Sec. 6.3).
+// Shared by glints/deliot2023.glsl and the statistical tests (tests/deliot2023_test.cpp compiles a compute
+// shader that includes this file), so the tests exercise exactly the code the method runs.
+// CPU mirror: engine/glints/deliot2023_reference.{h,cpp}; keep both in step.
+
+// Sec. 6.3: random numbers come from a small texture generated once at start-up
+// (engine/glints/deliot2023_resources.cpp). Each RGBA32UI texel holds four (uniform, Gaussian) pairs packed as
+// half floats, one per angular cell of a 2x2 block (integer texture + texelFetch: no filtering, no NaN patterns).
+layout(binding = 8) uniform usampler2D u_deliotNoise;
+const int DELIOT_NOISE_SIZE = 512;   // must match kDeliotNoiseSize in engine/glints/deliot2023_reference.h
+
+// The (uniform, Gaussian) pair of angular cell `angularCell` for the spatial vertex whose noise texel is
+// `vertexTexel`. Angular cell (a, b) lives in texel vertexTexel + (a, b) / 2 (floored), channel (a & 1) + 2 (b & 1),
+// so a cell keeps its random numbers whichever 2x2 bilinear neighbourhood it is part of (no jumps when h moves).
+vec2 deliotNoisePair(ivec2 vertexTexel, ivec2 angularCell) {
+    ivec2 texel = (vertexTexel + (angularCell >> 1)) & (DELIOT_NOISE_SIZE - 1);
+    uvec4 quad = texelFetch(u_deliotNoise, texel, 0);
+    int channel = (angularCell.x & 1) + 2 * (angularCell.y & 1);
+    return unpackHalf2x16(quad[channel]);
+}
+
+// A 3D integer hash (PCG-style: one LCG step then cross-lane multiply-xor rounds) used to place spatial
+// vertices of each virtual grid in the noise texture. Inputs are integer bit patterns (never uint(negative float)).
+uvec3 deliotHash3(uvec3 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * v.z;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v ^= v >> 16u;
+    v.x += v.y * v.z;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    return v;
+}
+
+// Probability of at least one success in b(N, p), Eq. 16: P1 = 1 - (1 - p)^N.
+// Written as -expm1(N log1p(-p)) with short series where the direct form cancels (tiny p or tiny N p):
+// the (1 - p)^N of ports loses everything below p ~ 1e-7 in float. N < 1 (less than one facet on average) is a
+// single trial of probability N p.
+float deliotProbAtLeastOne(float N, float p) {
+    if (N < 1.0) return clamp(N * p, 0.0, 1.0);
+    float logMiss = p < 1e-3 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0))) : log(max(1.0 - p, 0.0));
+    float e = N * logMiss;   // <= 0; -inf when p == 1
+    return e > -1e-3 ? -e * (1.0 + e * (0.5 + e * (1.0 / 6.0))) : 1.0 - exp(e);
+}
+
+// Gated Gaussian approximation of a binomial draw b(N, p), Sec. 6.3, Eq. 16-18: a single Bernoulli trial with
+// probability P1 decides whether any facet reflects; if so the count is 1 + a discretized Gaussian approximation of
+// b(N - 1, p) (Eq. 17), clamped to [0, N - 1]. Two random numbers (u uniform in [0, 1), g standard normal), no loops.
+// Eq. 18 prints the gate as H(theta0 - P1); the gate is open with probability P1, i.e. when theta0 < P1.
+// Non-integer N is allowed (facet counts are expectations over a footprint): N < 1 gives 0 or 1.
+float deliotGatedBinomial(float N, float p, float u, float g) {
+    if (!(N > 0.0) || !(p > 0.0)) return 0.0;
+    p = min(p, 1.0);
+    float P1 = deliotProbAtLeastOne(N, p);
+    if (u >= P1) return 0.0;
+    if (N <= 1.0) return 1.0;
+    float rest = N - 1.0;
+    float mu = rest * p;
+    float sigma = sqrt(rest * p * (1.0 - p));
+    return 1.0 + clamp(floor(mu + sigma * g), 0.0, floor(rest));
+}
