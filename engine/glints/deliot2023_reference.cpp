@@ -101,7 +101,15 @@ GridSelection selectGrids(double major, double minor, double phi, double screenS
     V A{k0, o0}, B{k0, o0 + 1}, C{k0 + 1, 2 * o0}, M{k0 + 1, 2 * o0 + 1}, E{k0 + 1, 2 * o0 + 2};
     std::array<V, 3> tri;
     std::array<double, 3> b;
-    if (x <= 0.5 * y) {
+    if (k0 == 0) {   // one isotropic grid at level 0: a fan (see the shader)
+        if (x < 0.5) {
+            tri = {A, C, M};
+            b = {1.0 - y, y * (1.0 - 2.0 * x), y * 2.0 * x};
+        } else {
+            tri = {A, M, E};
+            b = {1.0 - y, y * (2.0 - 2.0 * x), y * (2.0 * x - 1.0)};
+        }
+    } else if (x <= 0.5 * y) {
         tri = {A, C, M};
         b = {1.0 - y, y - 2.0 * x, 2.0 * x};
     } else if (x >= 1.0 - 0.5 * y) {

@@ -29,10 +29,22 @@ static GlintMethod deliot2023Method() {
             createDeliot2023Resources};
 }
 
+// Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016.glsl.
+static GlintMethod zirr2016Method() {
+    return {"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
+            "glints/zirr2016.glsl",
+            "Zirr & Kaplanyan 2016, Real-time rendering of procedural multiscale materials, I3D 2016",
+            {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
+             {"microfacet_roughness", 0.005f, 0.001f, 1.0f, "R, fraction of facets reflecting at the NDF peak", {},
+              false, true},
+             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "mip texel size in pixels across the footprint's minor axis"}}};
+}
+
 const std::vector<GlintMethod>& glintMethods() {
     static const std::vector<GlintMethod> methods = {
         smoothMethod(),
         deliot2023Method(),
+        zirr2016Method(),
     };
     return methods;
 }

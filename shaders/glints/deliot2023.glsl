@@ -100,7 +100,12 @@ GlintPixel glintSetup(GlintSurface s) {
     float bary[3];
     ivec2 A = ivec2(k0, o0), B = ivec2(k0, o0 + 1);
     ivec2 C = ivec2(k0 + 1, 2 * o0), M = ivec2(k0 + 1, 2 * o0 + 1), E = ivec2(k0 + 1, 2 * o0 + 2);
-    if (x <= 0.5 * y) {
+    if (k0 == 0) {
+        // Ratio level 0 is one isotropic grid whatever the orientation (A == B): the pentagon is a fan of two
+        // triangles around it. Keeping A and B apart would draw two binomials from the same random numbers.
+        if (x < 0.5) { tri[0] = A; tri[1] = C; tri[2] = M; bary[0] = 1.0 - y; bary[1] = y * (1.0 - 2.0 * x); bary[2] = y * 2.0 * x; }
+        else         { tri[0] = A; tri[1] = M; tri[2] = E; bary[0] = 1.0 - y; bary[1] = y * (2.0 - 2.0 * x); bary[2] = y * (2.0 * x - 1.0); }
+    } else if (x <= 0.5 * y) {
         tri[0] = A; tri[1] = C; tri[2] = M;
         bary[0] = 1.0 - y; bary[1] = y - 2.0 * x; bary[2] = 2.0 * x;
     } else if (x >= 1.0 - 0.5 * y) {
