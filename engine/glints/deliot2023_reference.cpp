@@ -40,9 +40,9 @@ NoisePair unpackNoisePair(uint32_t packed) {
 
 float probAtLeastOne(float N, float p) {
     if (N < 1.0f) return std::clamp(N * p, 0.0f, 1.0f);
-    float logMiss = p < 1e-3f ? -p * (1.0f + p * (0.5f + p * (1.0f / 3.0f))) : std::log(std::max(1.0f - p, 0.0f));
+    float logMiss = p < 0.05f ? -p * (1.0f + p * (0.5f + p * (1.0f / 3.0f + p * 0.25f))) : std::log(std::max(1.0f - p, 0.0f));
     float e = N * logMiss;
-    return e > -1e-3f ? -e * (1.0f + e * (0.5f + e * (1.0f / 6.0f))) : 1.0f - std::exp(e);
+    return e > -0.05f ? -e * (1.0f + e * (0.5f + e * (1.0f / 6.0f + e * (1.0f / 24.0f)))) : 1.0f - std::exp(e);
 }
 
 float gatedBinomial(float N, float p, float u, float g) {

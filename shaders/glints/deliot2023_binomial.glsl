@@ -36,13 +36,14 @@ uvec3 deliotHash3(uvec3 v) {
 
 // Probability of at least one success in b(N, p), Eq. 16: P1 = 1 - (1 - p)^N.
 // Written as -expm1(N log1p(-p)) with short series where the direct form cancels (tiny p or tiny N p):
-// the (1 - p)^N of ports loses everything below p ~ 1e-7 in float. N < 1 (less than one facet on average) is a
-// single trial of probability N p.
+// the (1 - p)^N of ports loses everything below p ~ 1e-7 in float. The series (below p = 0.05, e = -0.05) keep
+// ~1e-6 relative accuracy where float log(1 - p) and 1 - exp(e) lose digits. N < 1 (less than one facet on
+// average) is a single trial of probability N p.
 float deliotProbAtLeastOne(float N, float p) {
     if (N < 1.0) return clamp(N * p, 0.0, 1.0);
-    float logMiss = p < 1e-3 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0))) : log(max(1.0 - p, 0.0));
+    float logMiss = p < 0.05 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0 + p * 0.25))) : log(max(1.0 - p, 0.0));
     float e = N * logMiss;   // <= 0; -inf when p == 1
-    return e > -1e-3 ? -e * (1.0 + e * (0.5 + e * (1.0 / 6.0))) : 1.0 - exp(e);
+    return e > -0.05 ? -e * (1.0 + e * (0.5 + e * (1.0 / 6.0 + e * (1.0 / 24.0)))) : 1.0 - exp(e);
 }
 
 // Gated Gaussian approximation of a binomial draw b(N, p), Sec. 6.3, Eq. 16-18: a single Bernoulli trial with
