@@ -138,3 +138,181 @@ TEST(Deliot2023Binomial, HistogramCloseToBinomialPmf) {
         EXPECT_LT(tv, 0.12) << "N=" << N << " p=" << p;
     }
 }
+
+namespace {
+
+struct CountStats {
+    double mean = 0, variance = 0, expectedMean = 0, expectedVariance = 0;
+};
+
+// Probes `method` on isotropic footprints whose LOD sits `lodFraction` above the integer level -8, at UV points that
+// are vertices of both enclosing grids (so spatial interpolation does not mix vertices), with h near the centre of
+// one angular cell. Converts D back to the facet count (Eq. 3: count = D R / D(n) x facets) and compares with the
+// stratified law of Sec. 4.1 (Eq. 9): b(N P, p) with N P the facets of the footprint.
+CountStats blendedCountStats(const std::string& method, double lodFraction, int probes) {
+    const double alpha = 0.5, R = 0.05, facetsLo = 1000.0;
+    const double logDensity = std::log(facetsLo * 65536.0);   // cell area at LOD -8 is 4^-8
+    ParamValues values = {{"log_density", float(logDensity)}, {"microfacet_roughness", float(R)},
+                          {"screen_space_scale", 1.0f}};
+    if (method == "deliot2023") values["density_randomization"] = 0.0f;
+    GlintMethodProbe probe(method, values);
+    const double Dn = 1.0 / (M_PI * alpha * alpha);
+    const double cell = std::sqrt(R / Dn);
+    const double hxy = cell * 0.51;   // q = 0.01 into the cell: weights 0.98 / 0.0099 / 0.0099 / 0.0001
+    double fx = 0.01, w2 = 0;
+    for (double wx : {1 - fx, fx})
+        for (double wy : {1 - fx, fx}) w2 += (wx * wy) * (wx * wy);
+    std::vector<GlintProbeInput> inputs(probes);
+    std::mt19937 rng(1234);
+    std::vector<int> ms(60000);
+    std::iota(ms.begin(), ms.end(), 1);
+    std::shuffle(ms.begin(), ms.end(), rng);
+    float sigma = float(std::exp2(-8.0 + lodFraction));
+    for (int i = 0; i < probes; ++i) {
+        inputs[i].uv = glm::vec2(float(ms[i]) / 128.0f, 0.0f);
+        inputs[i].duvdx = {sigma, 0.0f};
+        inputs[i].duvdy = {0.0f, sigma};
+        inputs[i].h = glm::vec3(float(hxy), float(hxy), float(std::sqrt(1 - 2 * hxy * hxy)));
+        inputs[i].alpha = float(alpha);
+    }
+    std::vector<GlintProbeOutput> out = probe.run(inputs);
+    double s1 = 0, s2 = 0, facets = 0, p = 0;
+    for (const GlintProbeOutput& o : out) {
+        double footprintFacets = 1.0 / o.extra.w;
+        double count = o.D * R / Dn * footprintFacets;
+        s1 += count;
+        s2 += count * count;
+        facets += footprintFacets;
+        p += R * o.smoothD / Dn;
+    }
+    CountStats st;
+    st.mean = s1 / probes;
+    st.variance = s2 / probes - st.mean * st.mean;
+    facets /= probes;
+    p /= probes;
+    st.expectedMean = facets * p;
+    st.expectedVariance = facets * p * (1 - p) * w2;
+    return st;
+}
+
+}  // namespace
+
+// Sec. 4.2, Eq. 10, Figure 4: between two LOD levels the distributed binomial keeps the expected count and the
+// variance of the stratified law (within 3 % / 10 %: gated-Gaussian discretization plus 20k-sample noise), while the
+// ZK16 lerp of normalized outputs (Eq. 7) keeps the mean but loses variance mid-level: 4^t ((1-t)^2 + t^2/4) of it
+// (0.82 at t = 0.25, 0.625 at 0.5, 0.57 at 0.75), which the shader reproduces within 0.05.
+TEST(Deliot2023Blending, DistributedBinomialKeepsStratifiedStatisticsZirrLerpDoesNot) {
+    auto context = makeContext();
+    const int probes = 20000;
+    for (double t : {0.0, 0.25, 0.5, 0.75, 0.99}) {
+        CountStats ours = blendedCountStats("deliot2023", t, probes);
+        EXPECT_NEAR(ours.mean / ours.expectedMean, 1.0, 0.03) << "deliot2023 mean, LOD fraction " << t;
+        EXPECT_NEAR(ours.variance / ours.expectedVariance, 1.0, 0.10) << "deliot2023 variance, LOD fraction " << t;
+        CountStats zk = blendedCountStats("zirr2016", t, probes);
+        EXPECT_NEAR(zk.mean / zk.expectedMean, 1.0, 0.03) << "zirr2016 mean, LOD fraction " << t;
+        double zkRatio = zk.variance / zk.expectedVariance;
+        // Lerp of normalized counts: Var = N_P^2 ((1-t)^2 pq / N_lo + t^2 pq / N_hi), N_P = 4^t N_lo, N_hi = 4 N_lo.
+        double zkTheory = std::pow(4.0, t) * ((1 - t) * (1 - t) + t * t / 4);
+        EXPECT_NEAR(zkRatio, zkTheory, 0.05) << "zirr2016 variance ratio, LOD fraction " << t;
+        if (t > 0.2 && t < 0.8) EXPECT_LT(zkRatio, 0.85) << "the ZK16 lerp should lose variance mid-level";
+        std::printf("LOD fraction %.2f: variance / stratified  deliot2023 %.3f  zirr2016 %.3f\n", t,
+                    ours.variance / ours.expectedVariance, zkRatio);
+    }
+}
+
+// Constant cost (Sec. 6): 4 grids x 3 simplex vertices x 4 angular cells = 48 binomial evaluations per pixel and
+// light for every footprint (tiny, huge, isotropic, extremely anisotropic, degenerate, zero), and a finite D.
+TEST(Deliot2023Cost, FortyEightEvaluationsForEveryFootprint) {
+    auto context = makeContext();
+    GlintMethodProbe probe("deliot2023", {});
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<GlintProbeInput> inputs;
+    for (int i = 0; i < 4000; ++i) {
+        GlintProbeInput in;
+        float scale = std::exp2(unit(rng) * 20.0f - 6.0f);
+        in.uv = glm::vec2(unit(rng), unit(rng)) * 100.0f;
+        in.duvdx = glm::vec2(unit(rng), unit(rng)) * scale;
+        in.duvdy = i % 5 == 0 ? in.duvdx * unit(rng) : glm::vec2(unit(rng), unit(rng)) * scale * std::exp2(-10.0f * std::abs(unit(rng)));
+        if (i % 97 == 0) in.duvdx = in.duvdy = glm::vec2(0.0f);
+        in.h = glm::normalize(glm::vec3(unit(rng) * 0.5f, unit(rng) * 0.5f, 1.0f));
+        in.ndf = i % 2;
+        inputs.push_back(in);
+    }
+    std::vector<GlintProbeOutput> out = probe.run(inputs);
+    for (size_t i = 0; i < out.size(); ++i) {
+        ASSERT_EQ(out[i].extra.x, 48.0f) << "probe " << i;
+        ASSERT_EQ(out[i].extra.z, 1.0f);
+        ASSERT_TRUE(std::isfinite(out[i].D) && out[i].D >= 0.0f) << "probe " << i;
+    }
+}
+
+// The shader's footprint analysis (Sec. 5.1) matches the CPU reference: anisotropy ratio, LOD, ratio level, angle.
+TEST(Deliot2023Grids, ShaderFootprintMatchesCpuReference) {
+    auto context = makeContext();
+    const float scale = 1.5f;
+    GlintMethodProbe probe("deliot2023", {{"screen_space_scale", scale}});
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<GlintProbeInput> inputs;
+    std::vector<dl::GridSelection> expected;
+    for (int i = 0; i < 500; ++i) {
+        double phi = unit(rng) * 2 * M_PI, major = std::exp2(-12 + 8 * unit(rng)), ratio = std::exp2(6 * unit(rng));
+        glm::dvec2 a(std::cos(phi), std::sin(phi)), b(-a.y, a.x);
+        GlintProbeInput in;
+        in.duvdx = glm::vec2(a * major);
+        in.duvdy = glm::vec2(b * (major / ratio));
+        inputs.push_back(in);
+        expected.push_back(dl::selectGrids(major, major / ratio, phi, scale));
+    }
+    std::vector<GlintProbeOutput> out = probe.run(inputs);
+    for (size_t i = 0; i < out.size(); ++i) {
+        EXPECT_NEAR(out[i].footprint.x / expected[i].ratio, 1.0, 1e-3) << i;
+        EXPECT_NEAR(out[i].footprint.y, expected[i].lod, 1e-3) << i;
+        double dphi = std::abs(out[i].footprint.w - expected[i].phi);
+        EXPECT_LT(std::min(dphi, M_PI - dphi), 1e-3) << i;
+    }
+}
+
+// Sec. 5.2 / 6.1 on the CPU reference: the 4 tetrahedral weights are a partition of unity, select grids from the
+// two enclosing scales and ratio levels, and vary continuously with the footprint (a conforming tetrahedralization:
+// no grid's weight jumps when the footprint crosses a cell face).
+TEST(Deliot2023Grids, TetrahedralWeightsArePartitionOfUnityAndContinuous) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto weightsById = [](const dl::GridSelection& sel) {
+        std::map<std::tuple<int, int, int>, double> w;
+        for (const dl::Grid& g : sel.grids) {
+            int orientations = 2 << g.ratioLevel;
+            int o = g.ratioLevel == 0 ? 0 : ((g.orientation % orientations) + orientations) % orientations;
+            w[{g.lod, g.ratioLevel, o}] += g.weight;
+        }
+        return w;
+    };
+    for (int i = 0; i < 20000; ++i) {
+        double minor = std::exp2(-10 + 6 * unit(rng)), ratio = std::exp2(7 * unit(rng)), phi = unit(rng) * M_PI;
+        dl::GridSelection sel = dl::selectGrids(minor * ratio, minor, phi, 1.5);
+        double sum = 0;
+        int lod0 = int(std::floor(sel.lod)), k0 = int(std::floor(std::log2(sel.ratio)));
+        for (const dl::Grid& g : sel.grids) {
+            ASSERT_GE(g.weight, 0.0);
+            sum += g.weight;
+            if (g.weight > 0) {
+                ASSERT_TRUE(g.lod == lod0 || g.lod == lod0 + 1);
+                ASSERT_TRUE(g.ratioLevel == k0 || g.ratioLevel == k0 + 1);
+                if (g.ratioLevel > 0) {   // the grid's orientation is within one step of the footprint's
+                    double d = std::fmod(std::abs(g.orientation * dl::orientationStep(g.ratioLevel) - phi), M_PI);
+                    ASSERT_LE(std::min(d, M_PI - d), 2 * dl::orientationStep(g.ratioLevel) + 1e-9);
+                }
+            }
+        }
+        ASSERT_NEAR(sum, 1.0, 1e-9);
+        // Continuity: a relative nudge of 1e-7 moves no weight by more than 1e-4.
+        auto a = weightsById(sel);
+        auto b = weightsById(dl::selectGrids(minor * ratio * (1 + 1e-7), minor * (1 - 1e-7), phi + 1e-7, 1.5));
+        for (auto& [id, w] : a) {
+            double other = b.count(id) ? b[id] : 0.0;
+            ASSERT_NEAR(w, other, 1e-4) << "grid weight jumps near minor " << minor << " ratio " << ratio << " phi " << phi;
+        }
+    }
+}
