@@ -199,13 +199,16 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     vec2 f = q - qBase;
     ivec2 a0 = ivec2(qBase);
     float angularWeight[4] = float[4]((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    float logMiss = deliotLogMiss(p);   // Eq. 16's log(1 - p): once per light
     float count = 0.0;
     for (int v = 0; v < DELIOT_VERTICES; ++v) {
+        // Eq. 10 + 18: this grid vertex's share w_i N_i of the footprint's facets, drawn from the gated binomial
+        // with the random numbers of each of the 4 angular cells (the law's parameters are shared by the 4 draws).
+        DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss);
         float vertexCount = 0.0;
         for (int a = 0; a < 4; ++a) {
             vec2 rnd = deliotNoisePair(px.texel[v], a0 + ivec2(a & 1, a >> 1));
-            // Eq. 10 + 18: this grid's share w_i N_i of the footprint's facets, drawn from the gated binomial.
-            vertexCount += angularWeight[a] * deliotGatedBinomial(px.trials[v], p, rnd.x, rnd.y);
+            vertexCount += angularWeight[a] * deliotDrawBinomial(law, rnd.x, rnd.y);
         }
         g_deliotEvaluations += 4;
         count += px.spatialWeight[v] * vertexCount;

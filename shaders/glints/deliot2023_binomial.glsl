@@ -34,31 +34,54 @@ uvec3 deliotHash3(uvec3 v) {
     return v;
 }
 
-// Probability of at least one success in b(N, p), Eq. 16: P1 = 1 - (1 - p)^N.
-// Written as -expm1(N log1p(-p)) with short series where the direct form cancels (tiny p or tiny N p):
-// the (1 - p)^N of ports loses everything below p ~ 1e-7 in float. The series (below p = 0.05, e = -0.05) keep
-// ~1e-6 relative accuracy where float log(1 - p) and 1 - exp(e) lose digits. N < 1 (less than one facet on
+// log(1 - p), the per-light part of Eq. 16 (p is the same for every grid vertex and angular cell of a light).
+// Series below p = 0.05: float log(1 - p) loses digits there (ports' (1 - p)^N loses everything below p ~ 1e-7).
+float deliotLogMiss(float p) {
+    return p < 0.05 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0 + p * 0.25))) : log(max(1.0 - p, 0.0));
+}
+
+// Probability of at least one success in b(N, p), Eq. 16: P1 = 1 - (1 - p)^N = -expm1(N log(1 - p)), with a series
+// where 1 - exp(e) cancels (e > -0.05): ~1e-6 relative accuracy for any p >= 1e-7. N < 1 (less than one facet on
 // average) is a single trial of probability N p.
-float deliotProbAtLeastOne(float N, float p) {
+float deliotProbAtLeastOne(float N, float p, float logMiss) {
     if (N < 1.0) return clamp(N * p, 0.0, 1.0);
-    float logMiss = p < 0.05 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0 + p * 0.25))) : log(max(1.0 - p, 0.0));
     float e = N * logMiss;   // <= 0; -inf when p == 1
     return e > -0.05 ? -e * (1.0 + e * (0.5 + e * (1.0 / 6.0 + e * (1.0 / 24.0)))) : 1.0 - exp(e);
 }
+float deliotProbAtLeastOne(float N, float p) { return deliotProbAtLeastOne(N, p, deliotLogMiss(p)); }
 
 // Gated Gaussian approximation of a binomial draw b(N, p), Sec. 6.3, Eq. 16-18: a single Bernoulli trial with
 // probability P1 decides whether any facet reflects; if so the count is 1 + a discretized Gaussian approximation of
 // b(N - 1, p) (Eq. 17), clamped to [0, N - 1]. Two random numbers (u uniform in [0, 1), g standard normal), no loops.
 // Eq. 18 prints the gate as H(theta0 - P1); the gate is open with probability P1, i.e. when theta0 < P1.
 // Non-integer N is allowed (facet counts are expectations over a footprint): N < 1 gives 0 or 1.
-float deliotGatedBinomial(float N, float p, float u, float g) {
-    if (!(N > 0.0) || !(p > 0.0)) return 0.0;
+// Split in two: the law's parameters (once per grid vertex and light) and the draw (once per angular cell), so
+// the 4 angular draws of a vertex share one exp and one sqrt.
+struct DeliotBinomialLaw {
+    float P1;       // Eq. 16
+    float mu;       // Eq. 17, Gaussian for b(N - 1, p)
+    float sigma;
+    float maxExtra; // floor(N - 1): the count never exceeds N
+};
+
+DeliotBinomialLaw deliotBinomialLaw(float N, float p, float logMiss) {
+    DeliotBinomialLaw law;
+    bool none = !(N > 0.0) || !(p > 0.0);
     p = min(p, 1.0);
-    float P1 = deliotProbAtLeastOne(N, p);
-    if (u >= P1) return 0.0;
-    if (N <= 1.0) return 1.0;
-    float rest = N - 1.0;
-    float mu = rest * p;
-    float sigma = sqrt(rest * p * (1.0 - p));
-    return 1.0 + clamp(floor(mu + sigma * g), 0.0, floor(rest));
+    float rest = max(N - 1.0, 0.0);
+    law.P1 = none ? 0.0 : deliotProbAtLeastOne(N, p, logMiss);
+    law.mu = rest * p;
+    law.sigma = sqrt(rest * p * (1.0 - p));
+    law.maxExtra = floor(rest);
+    return law;
+}
+
+float deliotDrawBinomial(DeliotBinomialLaw law, float u, float g) {
+    if (u >= law.P1) return 0.0;
+    return 1.0 + clamp(floor(law.mu + law.sigma * g), 0.0, law.maxExtra);
+}
+
+float deliotGatedBinomial(float N, float p, float u, float g) {
+    float pc = clamp(p, 0.0, 1.0);
+    return deliotDrawBinomial(deliotBinomialLaw(N, p, deliotLogMiss(pc)), u, g);
 }
