@@ -9,11 +9,12 @@
 
 namespace glimmer::deliot2023 {
 
-constexpr int kNoiseSize = 512;   // DELIOT_NOISE_SIZE in deliot2023_binomial.glsl
+constexpr int kNoiseSize = 1024;   // DELIOT_NOISE_SIZE in deliot2023_binomial.glsl
 constexpr uint32_t kNoiseSeed = 0x9e3779b9u;
 
-// RGBA32UI texels, row-major, 4 channels per texel; each channel packs (uniform in [0, 1), standard normal) as
-// two half floats (low half: uniform). Deterministic for a seed.
+// R32UI texels, row-major; each packs (uniform in [0, 1), standard normal) as 16-bit fixed point (low half: uniform
+// ((k + 0.5) / 65536)^4, high half: signed Gaussian k / 4096).
+// Deterministic for a seed.
 std::vector<uint32_t> makeNoiseTexels(uint32_t seed = kNoiseSeed);
 struct NoisePair {
     float uniform, gaussian;

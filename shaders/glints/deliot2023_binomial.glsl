@@ -5,19 +5,27 @@
 // CPU mirror: engine/glints/deliot2023_reference.{h,cpp}; keep both in step.
 
 // Sec. 6.3: random numbers come from a small texture generated once at start-up
-// (engine/glints/deliot2023_resources.cpp). Each RGBA32UI texel holds four (uniform, Gaussian) pairs packed as
-// half floats, one per angular cell of a 2x2 block (integer texture + texelFetch: no filtering, no NaN patterns).
-layout(binding = 8) uniform usampler2D u_deliotNoise;
-const int DELIOT_NOISE_SIZE = 512;   // must match kDeliotNoiseSize in engine/glints/deliot2023_reference.h
+// (engine/glints/deliot2023_resources.cpp): 1024 x 1024 R32UI texels, each one (uniform, Gaussian) pair packed as
+// 16-bit fixed point. Low half: the uniform u as t^4, t = (k + 0.5) / 65536 (k drawn so that u is uniform), which
+// resolves gate probabilities down to ~1e-12 (a linear 16-bit u could not tell P1 = 1e-7 from 1.5e-5); high half:
+// the signed Gaussian k / 4096. Integer texture: no filtering, no NaN bit patterns; a few multiplies to unpack
+// (half floats cost more on llvmpipe).
+// Angular cell (a, b) of a spatial vertex lives in texel vertexTexel + (a, b), so a cell keeps its random numbers
+// whichever 2x2 bilinear neighbourhood it is part of (no jumps as h moves), and the 4 cells of a neighbourhood are
+// one textureGather (4 texelFetch per vertex made the noise reads most of the method's cost on llvmpipe).
+layout(binding = 8) uniform usampler2D u_deliotNoise;   // NEAREST, REPEAT
+const int DELIOT_NOISE_SIZE = 1024;   // must match kNoiseSize in engine/glints/deliot2023_reference.h
 
-// The (uniform, Gaussian) pair of angular cell `angularCell` for the spatial vertex whose noise texel is
-// `vertexTexel`. Angular cell (a, b) lives in texel vertexTexel + (a, b) / 2 (floored), channel (a & 1) + 2 (b & 1),
-// so a cell keeps its random numbers whichever 2x2 bilinear neighbourhood it is part of (no jumps when h moves).
-vec2 deliotNoisePair(ivec2 vertexTexel, ivec2 angularCell) {
-    ivec2 texel = (vertexTexel + (angularCell >> 1)) & (DELIOT_NOISE_SIZE - 1);
-    uvec4 quad = texelFetch(u_deliotNoise, texel, 0);
-    int channel = (angularCell.x & 1) + 2 * (angularCell.y & 1);
-    return unpackHalf2x16(quad[channel]);
+// Packed pairs of angular cells a0 + (0, 1), a0 + (1, 1), a0 + (1, 0), a0 (textureGather's component order).
+uvec4 deliotNoiseGather(ivec2 vertexTexel, ivec2 a0) {
+    ivec2 corner = (vertexTexel + a0 + 1) & (DELIOT_NOISE_SIZE - 1);   // shared corner of the 2x2 texel block
+    return textureGather(u_deliotNoise, vec2(corner) * (1.0 / float(DELIOT_NOISE_SIZE)));
+}
+
+vec2 deliotUnpackNoise(uint packedPair) {
+    float t = (float(packedPair & 0xffffu) + 0.5) * (1.0 / 65536.0);
+    t *= t;
+    return vec2(t * t, float(int(packedPair) >> 16) * (1.0 / 4096.0));
 }
 
 // A 3D integer hash (PCG-style: one LCG step then cross-lane multiply-xor rounds) used to place spatial
