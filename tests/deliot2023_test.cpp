@@ -267,10 +267,12 @@ TEST(Deliot2023Cost, FortyEightEvaluationsForEveryFootprint) {
         if (i % 97 == 0) in.duvdx = in.duvdy = glm::vec2(0.0f);
         in.h = glm::normalize(glm::vec3(unit(rng) * 0.5f, unit(rng) * 0.5f, 1.0f));
         in.ndf = i % 2;
+        if (i % 101 == 0) in.densityScale = 0.0f;   // glint mask = 0: no facets, D = 0 (not NaN)
         inputs.push_back(in);
     }
     std::vector<GlintProbeOutput> out = probe.run(inputs);
     for (size_t i = 0; i < out.size(); ++i) {
+        if (inputs[i].densityScale == 0.0f) EXPECT_EQ(out[i].D, 0.0f) << "probe " << i;
         ASSERT_EQ(out[i].extra.x, 48.0f) << "probe " << i;
         ASSERT_EQ(out[i].extra.z, 1.0f);
         ASSERT_TRUE(std::isfinite(out[i].D) && out[i].D >= 0.0f) << "probe " << i;
