@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "glints/deliot2023_resources.h"
 
 namespace glimmer {
 
@@ -13,9 +14,37 @@ static GlintMethod smoothMethod() {
             "Cook & Torrance 1982; Walter et al. 2007 (GGX); Beckmann 1963", {}};
 }
 
+// Deliot & Belcour 2023: shaders/glints/deliot2023.glsl; defaults and ranges from methods.md (public ports).
+static GlintMethod deliot2023Method() {
+    return {"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
+            "GLINT_METHOD_DELIOT2023", "glints/deliot2023.glsl",
+            "Deliot & Belcour 2023, Real-time rendering of glinty appearances using distributed binomial laws on "
+            "anisotropic grids, Computer Graphics Forum 42(8)",
+            {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
+             {"microfacet_roughness", 0.005f, 0.001f, 1.0f,
+              "R, ratio of micro- to macro-roughness: lower = fewer, brighter glints (useful 0.005-0.25)", {}, false,
+              true},
+             {"density_randomization", 2.0f, 0.0f, 10.0f, "std. deviation of the per-vertex log density"},
+             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "grid cell size in pixels across the footprint's minor axis"}},
+            createDeliot2023Resources};
+}
+
+// Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016.glsl.
+static GlintMethod zirr2016Method() {
+    return {"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
+            "glints/zirr2016.glsl",
+            "Zirr & Kaplanyan 2016, Real-time rendering of procedural multiscale materials, I3D 2016",
+            {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
+             {"microfacet_roughness", 0.005f, 0.001f, 1.0f, "R, fraction of facets reflecting at the NDF peak", {},
+              false, true},
+             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "mip texel size in pixels across the footprint's minor axis"}}};
+}
+
 const std::vector<GlintMethod>& glintMethods() {
     static const std::vector<GlintMethod> methods = {
         smoothMethod(),
+        deliot2023Method(),
+        zirr2016Method(),
     };
     return methods;
 }

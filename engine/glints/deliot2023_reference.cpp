@@ -1,0 +1,141 @@
+#include "glints/deliot2023_reference.h"
+
+
+#include <algorithm>
+#include <cmath>
+
+namespace glimmer::deliot2023 {
+
+// 32-bit mixing (a murmur-style finalizer) for the noise texture generator.
+static uint32_t mix32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+static double unit(uint32_t bits) { return (double(bits >> 8) + 0.5) / double(1u << 24); }
+
+std::vector<uint32_t> makeNoiseTexels(uint32_t seed) {
+    std::vector<uint32_t> texels(size_t(kNoiseSize) * kNoiseSize);
+    constexpr double kTwoPi = 6.283185307179586;
+    for (size_t i = 0; i < texels.size(); ++i) {
+        uint32_t h0 = mix32(uint32_t(i) * 3u + seed);
+        uint32_t h1 = mix32(h0 ^ 0x68bc21ebu), h2 = mix32(h1 ^ 0x02e5be93u);
+        // 16-bit fixed point: the uniform as t^4 with t = (k + 0.5) / 65536 and k = floor(65536 U^(1/4)) (fine
+        // resolution near 0 for tiny gate probabilities; u < 1 so a gate of probability 1 always opens); the
+        // Gaussian as k / 4096 clamped to the signed 16-bit range (|g| < 8).
+        uint32_t u = std::min(uint32_t(65536.0 * std::pow(unit(h0), 0.25)), 65535u);
+        double gaussian = std::sqrt(-2.0 * std::log(unit(h1))) * std::cos(kTwoPi * unit(h2));   // Box-Muller
+        int32_t g = int32_t(std::lround(std::clamp(gaussian * 4096.0, -32768.0, 32767.0)));
+        texels[i] = u | (uint32_t(g) << 16);
+    }
+    return texels;
+}
+
+NoisePair unpackNoisePair(uint32_t packed) {
+    float t = (float(packed & 0xffffu) + 0.5f) * (1.0f / 65536.0f);
+    t *= t;
+    return {t * t, float(int32_t(packed) >> 16) * (1.0f / 4096.0f)};
+}
+
+float probAtLeastOne(float N, float p) {
+    if (N < 1.0f) return std::clamp(N * p, 0.0f, 1.0f);
+    float logMiss = p < 0.05f ? -p * (1.0f + p * (0.5f + p * (1.0f / 3.0f + p * 0.25f))) : std::log(std::max(1.0f - p, 0.0f));
+    float e = N * logMiss;
+    return e > -0.05f ? -e * (1.0f + e * (0.5f + e * (1.0f / 6.0f + e * (1.0f / 24.0f)))) : 1.0f - std::exp(e);
+}
+
+float gatedBinomial(float N, float p, float u, float g) {
+    if (!(N > 0.0f) || !(p > 0.0f)) return 0.0f;
+    p = std::min(p, 1.0f);
+    float P1 = probAtLeastOne(N, p);
+    if (u >= P1) return 0.0f;
+    if (N <= 1.0f) return 1.0f;
+    float rest = N - 1.0f;
+    float mu = rest * p;
+    float sigma = std::sqrt(rest * p * (1.0f - p));
+    return 1.0f + std::clamp(std::floor(mu + sigma * g), 0.0f, std::floor(rest));
+}
+
+Moments exactBinomialMoments(double N, double p) {
+    Moments m;
+    if (N < 1.0) {
+        double q = N * p;
+        return {q, q * (1.0 - q), 1.0 - q};
+    }
+    m.mean = N * p;
+    m.variance = N * p * (1.0 - p);
+    m.pZero = p >= 1.0 ? 0.0 : std::exp(N * std::log1p(-p));
+    return m;
+}
+
+LevelSplit distributedSplit(double facetsPerLowerCell, double areaRatio) {
+    double upperWeight = (areaRatio - 1.0) / 3.0;   // (P - P_lo) / (4 P_lo - P_lo)
+    return {(1.0 - upperWeight) * facetsPerLowerCell, upperWeight * 4.0 * facetsPerLowerCell, upperWeight};
+}
+
+double orientationStep(int ratioLevel) { return 1.5707963267948966 * std::exp2(-double(ratioLevel)); }
+
+double gridCellArea(const Grid& grid) { return std::exp2(2.0 * grid.lod + grid.ratioLevel); }
+
+GridSelection selectGrids(double major, double minor, double phi, double screenScale) {
+    constexpr int kMaxRatioLevel = 16;
+    constexpr double kPi = 3.141592653589793;
+    GridSelection sel;
+    major = std::max(major, 1e-20);
+    minor = std::max(minor, major * std::exp2(-double(kMaxRatioLevel)));
+    sel.ratio = major / minor;
+    sel.lod = std::clamp(std::log2(minor * screenScale), -100.0, 100.0);
+    double lod0 = std::floor(sel.lod);
+    double scaleT = (std::exp2(2.0 * (sel.lod - lod0)) - 1.0) / 3.0;
+    int k0 = std::clamp(int(std::floor(std::log2(sel.ratio))), 0, kMaxRatioLevel - 1);
+    double ratio0 = std::exp2(double(k0));
+    double ratioT = std::clamp((sel.ratio - ratio0) / ratio0, 0.0, 1.0);
+    phi = std::fmod(phi, kPi);
+    if (phi < 0.0) phi += kPi;
+    sel.phi = phi;
+    double pos = phi / orientationStep(k0);
+    int o0 = int(std::floor(pos));
+    double x = std::clamp(pos - o0, 0.0, 1.0), y = ratioT;
+    struct V { int level, orientation; };
+    V A{k0, o0}, B{k0, o0 + 1}, C{k0 + 1, 2 * o0}, M{k0 + 1, 2 * o0 + 1}, E{k0 + 1, 2 * o0 + 2};
+    std::array<V, 3> tri;
+    std::array<double, 3> b;
+    if (k0 == 0) {   // one isotropic grid at level 0: a fan (see the shader)
+        if (x < 0.5) {
+            tri = {A, C, M};
+            b = {1.0 - y, y * (1.0 - 2.0 * x), y * 2.0 * x};
+        } else {
+            tri = {A, M, E};
+            b = {1.0 - y, y * (2.0 - 2.0 * x), y * (2.0 * x - 1.0)};
+        }
+    } else if (x <= 0.5 * y) {
+        tri = {A, C, M};
+        b = {1.0 - y, y - 2.0 * x, 2.0 * x};
+    } else if (x >= 1.0 - 0.5 * y) {
+        tri = {B, M, E};
+        b = {1.0 - y, 2.0 * (1.0 - x), y - 2.0 * (1.0 - x)};
+    } else {
+        tri = {A, B, M};
+        b = {0.0, x - 0.5 * y, y};
+        b[0] = 1.0 - b[1] - b[2];
+    }
+    for (double& v : b) v = std::max(v, 0.0);
+    std::array<double, 3> up, lo;
+    up[0] = std::min(scaleT, b[0]);
+    up[1] = std::clamp(scaleT - up[0], 0.0, b[1]);
+    up[2] = std::clamp(scaleT - up[0] - up[1], 0.0, b[2]);
+    for (int j = 0; j < 3; ++j) lo[j] = std::max(b[j] - up[j], 0.0);
+    int tet = scaleT <= b[0] ? 0 : (scaleT <= b[0] + b[1] ? 1 : 2);
+    int lodLo = int(lod0), lodHi = lodLo + 1;
+    auto grid = [&](int v, int lod, double w) { return Grid{lod, tri[v].level, tri[v].orientation, w}; };
+    if (tet == 0) sel.grids = {grid(0, lodLo, lo[0]), grid(1, lodLo, lo[1]), grid(2, lodLo, lo[2]), grid(0, lodHi, up[0])};
+    else if (tet == 1) sel.grids = {grid(1, lodLo, lo[1]), grid(2, lodLo, lo[2]), grid(0, lodHi, up[0]), grid(1, lodHi, up[1])};
+    else sel.grids = {grid(2, lodLo, lo[2]), grid(0, lodHi, up[0]), grid(1, lodHi, up[1]), grid(2, lodHi, up[2])};
+    return sel;
+}
+
+}  // namespace glimmer::deliot2023

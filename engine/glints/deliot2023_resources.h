@@ -1,0 +1,24 @@
+// GPU resources of Deliot & Belcour 2023: the random-number texture of Sec. 6.3, generated once at start-up and
+// bound to texture unit 8 (u_deliotNoise in shaders/glints/deliot2023_binomial.glsl).
+#pragma once
+#include <memory>
+
+#include "gl/handles.h"
+#include "glints/methods.h"
+
+namespace glimmer {
+
+class Deliot2023Resources : public GlintMethodResources {
+public:
+    static constexpr int kNoiseUnit = 8;
+    Deliot2023Resources();
+    void bind() override;
+    GLuint noiseTexture() const { return noise_.id(); }
+
+private:
+    gl::Texture noise_;
+};
+
+std::unique_ptr<GlintMethodResources> createDeliot2023Resources();
+
+}  // namespace glimmer

@@ -1,0 +1,43 @@
+// Test probe: runs a glint method's glintSetup + glintD on synthetic surfaces (UV, derivatives, half vector) and
+// writes D, the footprint AOV and the extra AOV. Used by tests/deliot2023_test.cpp and tests/zirr2016_test.cpp
+// (engine/glints/deliot2023_probe.cpp) to check the real shader code with controlled footprints.
+layout(local_size_x = 64) in;
+#include "common/constants.glsl"
+#include "common/brdf.glsl"
+#include "common/footprint.glsl"
+#include "common/glint_surface.glsl"
+#include GLINT_METHOD_FILE
+
+struct ProbeInput {
+    vec4 uvDuvdx;          // uv, duv/dx
+    vec4 duvdyAlphaNdf;    // duv/dy, alpha, ndf
+    vec4 halfDensity;      // h (shading frame), density scale
+};
+layout(std430, binding = 14) readonly buffer ProbeInputs { ProbeInput u_probeIn[]; };
+layout(std430, binding = 15) writeonly buffer ProbeOutputs { vec4 u_probeOut[]; };   // 3 per probe
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(u_probeIn.length())) return;
+    ProbeInput probe = u_probeIn[i];
+    GlintSurface s;
+    s.uv = probe.uvDuvdx.xy;
+    s.duvdx = probe.uvDuvdx.zw;
+    s.duvdy = probe.duvdyAlphaNdf.xy;
+    s.alpha = probe.duvdyAlphaNdf.z;
+    s.ndf = int(probe.duvdyAlphaNdf.w + 0.5);
+    s.densityScale = probe.halfDensity.w;
+    s.materialId = 0;
+    s.pixel = ivec2(int(i), 0);
+    s.n = vec3(0.0, 0.0, 1.0);
+    s.t = vec3(1.0, 0.0, 0.0);
+    s.b = vec3(0.0, 1.0, 0.0);
+    GlintPixel px = glintSetup(s);
+    vec3 h = normalize(probe.halfDensity.xyz);
+    vec3 wo = vec3(0.0, 0.0, 1.0);
+    vec3 wi = reflect(-wo, h);
+    float D = glintD(px, s, h, wi, wo);
+    u_probeOut[3u * i] = vec4(D, D_smooth(h, s.alpha, s.ndf), 0.0, 0.0);
+    u_probeOut[3u * i + 1u] = glintFootprintAOV(px, s);
+    u_probeOut[3u * i + 2u] = glintExtraAOV(px, s);
+}
