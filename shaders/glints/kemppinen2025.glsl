@@ -1,0 +1,207 @@
+// Kemppinen et al. 2025, "Evaluating and Sampling Glinty NDFs in Constant Time" (ACM TOG 44(6), Art. 255):
+// evaluation of the filtered semi-discrete NDF D*^f, Algorithm 1. CPU twin: engine/glints/kemppinen2025_reference.
+//
+// D*^f(x, h) = D(h) [ (1/N) sum_{i in B(k)} R_i c_i g_a(T(h) - mu_i; Sigma_a) g_s(x_i - x; Sigma_s) + C(h) E[c] ]
+// (Eq. 5 and 11), with g normalised 2D Gaussians (the paper's N(.) is written with a 1D constant; the 2D one is
+// what makes the expectation over the surface equal D, Eq. 2), Sigma_a = D(h) (alpha* A*^-1)^2 (Algorithm 1
+// line 12, the Eq. 3 tip), Sigma_s = f^2 J J^T (line 11), points of the implicit 4D grid (Sec. 3.3.1) at two
+// levels blended by the mollified roulette R of Eq. 8, and C the analytic compensation of Eq. 9-10.
+#include "glints/kemppinen2025_core.glsl"
+
+// Per-glint colours: lighting.frag uses glintColorD (RGB NDF) instead of glintD when this is defined.
+#define GLINT_COLOR_D 1
+
+// Footprint cells: the finer of the two levels has spatial cells between KAPPA and 2 KAPPA filter standard
+// deviations (major axis), the coarser between 2 KAPPA and 4 KAPPA, so the 2x2 spatial neighbourhood (which
+// covers at least half a cell around x) holds the filter (Sec. 3.3.2: "footprint covering 1-2 spatial cells").
+const float KEMPPINEN_KAPPA = 3.0;
+const float KEMPPINEN_MAX_LEVEL = 24.0;
+
+// One point process (one per triplanar plane, Sec. 3.3.6; one with UVs).
+struct KemppinenProcess {
+    float weight;          // triplanar blend weight (1 with UVs)
+    float spatialNorm;     // 1 / (2 pi sqrt(det Sigma_s)), Sigma_s in x_s units
+    vec3 invCov;           // Sigma_s^-1 = [x y; y z], x_s units
+    int level;             // floor(lambda)
+    float levelFrac;       // lambda - floor(lambda): weight of level + 1
+    ivec2 baseCell[2];     // lower-left cell of the 2x2 spatial neighbourhood, per level
+    vec2 local[2];         // x_s res_s - baseCell, per level (cell units, avoids cancellation with large UVs)
+};
+
+struct GlintPixel {
+    bool hasGlints;        // density > 0
+    vec2 alpha;            // (alpha_x, alpha_y): material alpha split by the roughness anisotropy
+    vec2 angularStretch;   // A*^-1 diagonal (glint anisotropy)
+    float invDensity;      // 1 / N
+    float microRoughness;
+    int processCount;
+    int neighbourSide;     // 2 (k = 4) or 4 (k = 16)
+    float colorVariation;
+    float footprintAnisotropy;
+    KemppinenProcess process[3];
+};
+
+// Counts Gaussian-pair evaluations of the current pixel (read by glintExtraAOV after the light loop).
+int kemppinenGaussianCount = 0;
+
+// Builds the process for spatial coordinates x_s = A uv with UV Jacobian columns (dx, dy).
+KemppinenProcess kemppinenProcess(vec2 uv, vec2 dx, vec2 dy, vec2 stretch, float resolution, float weight,
+                                  out float anisotropy) {
+    KemppinenProcess p;
+    p.weight = weight;
+    vec2 xs = stretch * uv;
+    vec2 jx = stretch * dx, jy = stretch * dy;
+    float f2 = P_FILTER_SIZE * P_FILTER_SIZE;
+    // Sigma_s = f^2 J J^T (Algorithm 1 line 11), with a floor of 1e-4 level-0 cells so it stays invertible.
+    float floorVar = 1e-8 / (resolution * resolution);
+    float a = f2 * (jx.x * jx.x + jy.x * jy.x) + floorVar;
+    float b = f2 * (jx.x * jx.y + jy.x * jy.y);
+    float c = f2 * (jx.y * jx.y + jy.y * jy.y) + floorVar;
+    float det = max(a * c - b * b, 1e-30);
+    p.invCov = vec3(c, -b, a) / det;
+    p.spatialNorm = 1.0 / (2.0 * PI * sqrt(det));
+    float mean = 0.5 * (a + c), diff = 0.5 * (a - c);
+    float root = sqrt(diff * diff + b * b);
+    float major = sqrt(mean + root), minor = sqrt(max(mean - root, 1e-30));
+    anisotropy = major / minor;
+    // Sec. 3.3.2 / Algorithm 1 line 5: the level from the footprint size in grid units (isotropic choice on
+    // the major axis, so the spatial neighbourhood always holds the filter).
+    float lambda = clamp(log2(2.0 * KEMPPINEN_KAPPA * major * resolution), 0.0, KEMPPINEN_MAX_LEVEL);
+    p.level = int(floor(lambda));
+    p.levelFrac = lambda - float(p.level);
+    for (int i = 0; i < 2; ++i) {
+        float resS = resolution * exp2(-float(p.level + i));
+        vec2 cellCoord = xs * resS;
+        p.baseCell[i] = ivec2(floor(cellCoord - 0.5));
+        p.local[i] = cellCoord - vec2(p.baseCell[i]);
+    }
+    return p;
+}
+
+// A point of the surface's tangent plane seen through a pixel position (for triplanar footprints: position
+// derivatives are not in the G-buffer, and a full-screen pass cannot take them).
+vec3 kemppinenTangentPlanePoint(vec2 pixelPosition, vec3 planePoint, vec3 planeNormal) {
+    vec2 ndc = pixelPosition / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 p = u_inverseViewProjection * vec4(ndc, 0.5, 1.0);
+    vec3 dir = p.xyz / p.w - u_cameraPosition.xyz;
+    float denom = dot(dir, planeNormal);
+    denom = abs(denom) > 1e-8 ? denom : 1e-8;
+    return u_cameraPosition.xyz + dir * (dot(planePoint - u_cameraPosition.xyz, planeNormal) / denom);
+}
+
+GlintPixel glintSetup(GlintSurface s) {
+    GlintPixel px;
+    float density = P_DENSITY * s.densityScale;   // spatially varying density (texture channel x material)
+    px.hasGlints = density > 0.0;
+    density = max(density, 1e-6);
+    float resolution = sqrt(density);              // Algorithm 1 line 1 (det A* = 1 here)
+    px.invDensity = 1.0 / density;
+    float rough = sqrt(P_ROUGHNESS_ANISOTROPY);
+    px.alpha = max(vec2(s.alpha * rough, s.alpha / rough), vec2(1e-4));
+    px.microRoughness = P_MICRO_ROUGHNESS;
+    px.neighbourSide = P_NEIGHBORS > 0.5 ? 4 : 2;
+    px.colorVariation = P_COLOR_VARIATION;
+    bool triplanar = P_TRIPLANAR > 0.5;
+    // Sec. 3.3.6 anisotropy: A* = diag(1/sqrt(a), sqrt(a)) (det 1, so the density per UV area is unchanged):
+    // the UV grid is stretched and the angular lobe inversely stretched, widest along the tangent.
+    float an = sqrt(P_GLINT_ANISOTROPY);
+    vec2 stretch = triplanar ? vec2(1.0) : vec2(1.0 / an, an);
+    px.angularStretch = 1.0 / stretch;
+    px.footprintAnisotropy = 1.0;
+    if (!triplanar) {
+        px.processCount = 1;
+        px.process[0] = kemppinenProcess(s.uv, s.duvdx, s.duvdy, stretch, resolution, 1.0, px.footprintAnisotropy);
+    } else {
+        // Sec. 3.3.6 UV-free mode: three point processes in the world planes x, y, z, blended with weights
+        // |n . e_q| (normalised) through the same roulette as the levels. Footprints from the tangent plane.
+        px.processCount = 3;
+        vec2 centre = vec2(s.pixel) + 0.5;
+        vec3 p0 = kemppinenTangentPlanePoint(centre, s.position, s.n);
+        vec3 dPdx = kemppinenTangentPlanePoint(centre + vec2(1.0, 0.0), s.position, s.n) - p0;
+        vec3 dPdy = kemppinenTangentPlanePoint(centre + vec2(0.0, 1.0), s.position, s.n) - p0;
+        vec3 w = abs(s.n);
+        w /= max(w.x + w.y + w.z, 1e-6);
+        float unused;
+        px.process[0] = kemppinenProcess(s.position.yz, dPdx.yz, dPdy.yz, stretch, resolution, w.x, unused);
+        px.process[1] = kemppinenProcess(s.position.xz, dPdx.xz, dPdy.xz, stretch, resolution, w.y, px.footprintAnisotropy);
+        px.process[2] = kemppinenProcess(s.position.xy, dPdx.xy, dPdy.xy, stretch, resolution, w.z, unused);
+    }
+    return px;
+}
+
+// D*^f(x, h) in RGB (Algorithm 1). h: shading-frame half vector.
+vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
+    if (!px.hasGlints || h.z <= 0.0) return vec3(0.0);
+    float d = kemppinenSmoothD(h, px.alpha, ndf);                       // line 4
+    vec2 xa = kemppinenToPrior(h, px.alpha, ndf);                       // line 3
+    vec2 sigmaA = px.microRoughness * sqrt(d) * px.angularStretch;      // line 12
+    float angularNorm = 1.0 / (2.0 * PI * sigmaA.x * sigmaA.y);
+    // Eq. 10, first integral: the Gaussian's mass over the unit square enclosing U.
+    float squareMass = kemppinenIntervalMass(xa.x, sigmaA.x, 0.0, 1.0) * kemppinenIntervalMass(xa.y, sigmaA.y, 0.0, 1.0);
+    int side = px.neighbourSide;
+    float blockOffset = 0.5 * float(side) - 0.5;   // k nearest cells: the side x side block around x_a
+    vec3 explicitSum = vec3(0.0);
+    float compensation = 0.0;
+    for (int q = 0; q < px.processCount; ++q) {
+        KemppinenProcess proc = px.process[q];
+        vec3 processSum = vec3(0.0);
+        for (int li = 0; li < 2; ++li) {                                  // line 7: levels floor and ceil
+            int level = proc.level + li;
+            float wLevel = (li == 0 ? 1.0 - proc.levelFrac : proc.levelFrac) * proc.weight;   // line 8
+            float resA = exp2(float(level));                              // line 10
+            int cellsA = 1 << level;
+            vec2 xaCell = xa * resA;
+            ivec2 a0 = ivec2(floor(xaCell - blockOffset));
+            vec2 invVarA = 1.0 / (sigmaA * sigmaA * resA * resA);         // angular exponent in cell units
+            // Sigma_s^-1 in cell units: Sigma_s^-1 / res_s^2 with res_s = sqrt(N) 2^-l.
+            vec3 invCovS = proc.invCov * (px.invDensity * exp2(2.0 * float(level)));
+            // Eq. 10, second integral: B(k) clipped to the square; the compensation C of Eq. 9, linearly blended.
+            vec2 lo = max(vec2(a0) / resA, vec2(0.0));
+            vec2 hi = min(vec2(a0 + side) / resA, vec2(1.0));
+            float blockMass = kemppinenIntervalMass(xa.x, sigmaA.x, lo.x, hi.x) * kemppinenIntervalMass(xa.y, sigmaA.y, lo.y, hi.y);
+            compensation += wLevel * max(squareMass - blockMass, 0.0);
+            for (int ai = 0; ai < side * side; ++ai) {                    // line 14: k angular cells
+                ivec2 cellA = a0 + ivec2(ai % side, ai / side);
+                bool valid = all(greaterThanEqual(cellA, ivec2(0))) && all(lessThan(cellA, ivec2(cellsA)));
+                for (int si = 0; si < 4; ++si) {                          // line 13: 2x2 spatial cells
+                    ivec2 offset = ivec2(si & 1, si >> 1);
+                    KemppinenPoint p = kemppinenPoint(proc.baseCell[li] + offset, cellA, level, q);   // lines 15-18
+                    vec2 ga = (vec2(cellA) + p.angular) / resA;
+                    vec2 fromCentre = ga - 0.5;
+                    bool inDisk = dot(fromCentre, fromCentre) < 0.25;     // points outside U are rejected
+                    vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
+                    vec2 da = xaCell - vec2(cellA) - p.angular;
+                    float e = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z +
+                              dot(da * da, invVarA);
+                    float weight = (valid && inDisk) ? kemppinenRoulette(p.roulette, wLevel) * exp(-0.5 * e) : 0.0;
+                    processSum += weight * kemppinenGlintColor(p.hue, px.colorVariation);   // line 19
+                    ++kemppinenGaussianCount;
+                }
+            }
+        }
+        explicitSum += processSum * proc.spatialNorm;
+    }
+    // Eq. 11; the compensation uses the mean glint colour, which is white (kemppinenGlintColor).
+    vec3 result = d * (explicitSum * (angularNorm * px.invDensity) + vec3(compensation));
+    return result;
+}
+
+vec3 glintColorD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+    return kemppinenFilteredNdf(px, h, s.ndf);
+}
+
+float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+    return dot(kemppinenFilteredNdf(px, h, s.ndf), vec3(1.0 / 3.0));
+}
+
+vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) {
+    int q = px.processCount == 3 ? 1 : 0;
+    return vec4(px.footprintAnisotropy, float(px.process[q].level) + px.process[q].levelFrac,
+                float(px.process[q].level), px.process[q].levelFrac);
+}
+
+// x: Gaussian-pair evaluations in this pixel (all lights), y: LOD lambda, z: density, w: process count.
+vec4 glintExtraAOV(GlintPixel px, GlintSurface s) {
+    return vec4(float(kemppinenGaussianCount), float(px.process[0].level) + px.process[0].levelFrac,
+                1.0 / px.invDensity, float(px.processCount));
+}
