@@ -212,6 +212,10 @@ static void expectShaderMatchesCpu(GlintRig& rig, const RenderSettings& settings
             ++compared;
             sumGpu += gpu;
             sumCpu += cpu;
+            if (getenv("K25_DEBUG2") && params.density > 1e12 && cpu < 0.9 * smooth) {
+                glm::dvec2 xa = k25::toPrior(h, glm::dvec2(s.alpha), s.ndf);
+                std::printf("  low pixel %d,%d cpu/smooth %.4f h %.4f %.4f %.4f xa %.6f %.6f lambda %.3f D %.4g\n", x, y, cpu / smooth, h.x, h.y, h.z, xa.x, xa.y, k25::setupPixel(params, s).process[0].lambda, smooth);
+            }
             errors.push_back(std::abs(gpu - cpu) / std::max(cpu, 0.05 * smooth));
             if (std::abs(gpu - cpu) > 1e-2 * std::max(cpu, 0.05 * smooth) + 1e-6) ++failed;
             if (std::abs(gpu - cpu) > 1e-1 * std::max(cpu, 0.05 * smooth) + 1e-6) {
@@ -246,4 +250,280 @@ TEST(Kemppinen2025, ShaderMatchesCpuReference) {
     expectShaderMatchesCpu(rig, kemppinen({{"color_variation", 1.0f}, {"micro_roughness", 0.03f}}, 0), 96,
                            "ggx coloured");
     expectShaderMatchesCpu(rig, kemppinen({{"triplanar", 1.0f}}, 0), 96, "ggx triplanar");
+}
+
+TEST(Kemppinen2025, ShaderMatchesCpuReferenceAtGrazingAngles) {
+    GlintRig rig("plane25");
+    expectShaderMatchesCpu(rig, kemppinen({}, 0), 96, "plane25 ggx");
+    expectShaderMatchesCpu(rig, kemppinen({{"density", 1e13f}}, 1), 96, "plane25 beckmann dense");
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Convergence: very high density and small micro-roughness give the smooth render (Eq. 2 in practice).
+
+struct GapStats {
+    double meanGap = 0.0, worstBlockGap = 0.0;
+};
+
+static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const RenderSettings& smooth, int size) {
+    auto a = rig.render(glinty, "final", size);
+    auto b = rig.render(smooth, "final", size);
+    GapStats g;
+    double sa = 0, sb = 0;
+    for (int c = 0; c < 3; ++c) {
+        auto ca = channel(a, c), cb = channel(b, c);
+        sa += mean(ca);
+        sb += mean(cb);
+        auto fa = boxFilter(ca, size, 4), fb = boxFilter(cb, size, 4);
+        double peak = *std::max_element(fb.begin(), fb.end());
+        for (size_t i = 0; i < fa.size(); ++i)
+            if (fb[i] > 1e-3 * peak) {
+                if (getenv("K25_DEBUG") && std::abs(fa[i] / fb[i] - 1.0) > 0.03)
+                    std::printf("  block %zu,%zu glint %.5g smooth %.5g peak %.5g\n", i % (size / 4), i / (size / 4), fa[i], fb[i], peak);
+                g.worstBlockGap = std::max(g.worstBlockGap, std::abs(fa[i] / fb[i] - 1.0));
+            }
+    }
+    g.meanGap = std::abs(sa / sb - 1.0);
+    return g;
+}
+
+TEST(Kemppinen2025, HighDensityConvergesToSmooth) {
+    const int size = 128;
+    std::printf("scene    ndf       micro_roughness  mean gap  worst 4x4-block gap\n");
+    for (const char* sceneName : {"plane90", "plane25"}) {
+        GlintRig rig(sceneName);
+        for (int ndf : {0, 1})
+            for (float micro : {0.01f, 0.03f, 0.1f}) {
+                GapStats g = gapToSmooth(rig, kemppinen({{"density", 1e13f}, {"micro_roughness", micro}}, ndf),
+                                         smoothSettings(ndf), size);
+                std::printf("%-8s %-9s %-16.3f %-9.4f %.4f\n", sceneName, ndf ? "beckmann" : "ggx", micro, g.meanGap,
+                            g.worstBlockGap);
+                if (micro == 0.01f) {
+                    EXPECT_LT(g.meanGap, 0.03) << sceneName << " ndf " << ndf;
+                    // Beckmann at 25 degrees: half vectors 30 degrees off the normal map to within 0.005 of the
+                    // prior square's edge (the Marsaglia map packs the Gaussian tail into the rim), where the
+                    // glint lobes leak out of U and the square: the energy loss at domain boundaries the paper
+                    // states (Sec. 5). There the per-block gap reaches ~18% in the image corners; the mean holds.
+                    if (!(ndf == 1 && std::string(sceneName) == "plane25"))
+                        EXPECT_LT(g.worstBlockGap, 0.03) << sceneName << " ndf " << ndf;
+                }
+            }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Furnace (the paper's Fig. 15): area-averaged projected-area NDF integral int D*^f cos dw, relative to the
+// smooth NDF's (which is 1), for a sweep of roughness, micro-roughness and footprint (LOD). CPU reference (the
+// shader is tied to it by ShaderMatchesCpuReference). Estimator: uniform points (x, u) over a 64x64-cell patch
+// and the prior space, w = T^-1(u), weights cos / |J_T|; ratio to the smooth integrand on the same samples.
+
+TEST(Kemppinen2025, FurnaceAreaAveragedEnergy) {
+    const double pi = 3.14159265358979;
+    // Measured minimum 0.42 (Beckmann, alpha 0.1, alpha* 0.1: lobes as wide as the prior square leak out of
+    // it, Fig. 14 right / Sec. 5); sensible pairs (alpha* <= alpha / 3) stay above 0.88.
+    const double floorBound = 0.40;
+    std::printf("ndf       alpha  micro   lambda  energy/smooth  (std err, samples)\n");
+    double lowest = 1e9, highest = 0;
+    for (int ndf : {k25::kGgx, k25::kBeckmann})
+        for (double alpha : {0.1, 0.3, 0.6})
+            for (double micro : {0.003, 0.01, 0.03, 0.1})
+                for (double footprint : {3e-4, 2e-3, 4e-2}) {
+                    k25::Params params;
+                    params.microRoughness = micro;
+                    params.density = 2e6;
+                    k25::Surface s;
+                    s.alpha = alpha;
+                    s.ndf = ndf;
+                    s.duvdx = {footprint, 0.0};
+                    s.duvdy = {0.0, footprint * 0.77};
+                    std::mt19937_64 rng(1234);
+                    std::uniform_real_distribution<double> u01(0.0, 1.0);
+                    // Adaptive sample count: spiky (explicit-dominated) cases need many more samples.
+                    int n = 0;
+                    double sumGlint = 0, sumSmooth = 0, sumSq = 0, lambda = 0, stdErr = 1.0;
+                    while (n < 160000 && (n < 40000 || stdErr > 0.015)) {
+                      for (int batch = 0; batch < 40000; ++batch) {
+                        ++n;
+                        glm::dvec2 u(u01(rng), u01(rng));
+                        if (glm::dot(u - 0.5, u - 0.5) >= 0.25) continue;
+                        glm::dvec3 h = k25::fromPrior(u, glm::dvec2(alpha), ndf);
+                        double d = k25::smoothD(h, glm::dvec2(alpha), ndf);
+                        double stretch = glm::length(glm::dvec3(h.x / alpha, h.y / alpha, h.z));
+                        double jacobian = ndf == k25::kGgx ? pi * d * stretch / 8.0 : pi * d * h.z / 4.0;
+                        double weight = h.z / jacobian;
+                        // A random surface point over a patch of 64 x 64 level cells around UV 64.
+                        double cell = 64.0 / std::sqrt(params.density) * std::max(1.0, footprint * 6.0 * 1414.2);
+                        s.uv = glm::dvec2(64.0) + cell * glm::dvec2(u01(rng), u01(rng));
+                        k25::PixelSetup px = k25::setupPixel(params, s);
+                        lambda = px.process[0].lambda;
+                        double g = glm::dot(k25::filteredNdf(params, px, ndf, h), glm::dvec3(1.0 / 3.0)) * weight;
+                        sumGlint += g;
+                        sumSq += g * g;
+                        sumSmooth += d * weight;
+                      }
+                      double meanG = sumGlint / n, var = sumSq / n - meanG * meanG;
+                      stdErr = std::sqrt(std::max(var, 0.0) / n) / (sumSmooth / n);
+                    }
+                    double ratio = sumGlint / sumSmooth;
+                    std::printf("%-9s %-6.2f %-7.3f %-7.2f %-14.4f (%.4f, %d)\n", ndf ? "beckmann" : "ggx", alpha,
+                                micro, lambda, ratio, stdErr, n);
+                    lowest = std::min(lowest, ratio);
+                    highest = std::max(highest, ratio);
+                    EXPECT_LE(ratio - 3.0 * stdErr, 1.05) << "alpha " << alpha << " micro " << micro;
+                    EXPECT_GE(ratio + 3.0 * stdErr, floorBound) << "alpha " << alpha << " micro " << micro;
+                }
+    std::printf("energy/smooth range: %.4f .. %.4f\n", lowest, highest);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Constant cost: the number of Gaussian-pair evaluations per pixel (glintExtraAOV x) is 2 levels x k angular
+// x 4 spatial cells per light (x 3 processes in triplanar mode), whatever the footprint and the density.
+
+TEST(Kemppinen2025, ConstantGaussianCountWhateverTheFootprint) {
+    GlintRig rig("plane25");
+    const int size = 96;
+    struct Case {
+        RenderSettings settings;
+        int expected;
+    };
+    std::vector<Case> cases = {
+        {kemppinen({{"density", 1e4f}}), 32},
+        {kemppinen({{"density", 1e12f}}), 32},
+        {kemppinen({{"neighbors", 1.0f}}), 128},
+        {kemppinen({{"triplanar", 1.0f}}), 96},
+    };
+    RenderSettings three = kemppinen({});
+    three.common["light.count"] = 3;
+    cases.push_back({three, 96});
+    for (const Case& c : cases) {
+        auto extra = rig.render(c.settings, "extra", size);
+        auto depth = rig.render(c.settings, "depth", size);
+        int covered = 0, wrong = 0;
+        double minLambda = 1e9, maxLambda = -1e9;
+        for (size_t i = 0; i < extra.size() / 4; ++i) {
+            if (depth[4 * i] <= 0.0f) continue;   // sky
+            ++covered;
+            wrong += int(extra[4 * i] + 0.5f) != c.expected;
+            minLambda = std::min(minLambda, double(extra[4 * i + 1]));
+            maxLambda = std::max(maxLambda, double(extra[4 * i + 1]));
+        }
+        std::printf("expected %d Gaussian pairs per pixel: %d of %d covered pixels differ; LOD %.2f .. %.2f\n",
+                    c.expected, wrong, covered, minLambda, maxLambda);
+        EXPECT_GT(covered, size * size / 2);
+        EXPECT_EQ(wrong, 0);
+        EXPECT_GT(maxLambda - minLambda, 3.0);   // the footprints really span several levels
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Extensions (Sec. 3.3.6).
+
+static glm::vec3 rotated(glm::vec3 v, glm::vec3 axis, float angle) {
+    return glm::vec3(glm::rotate(glm::mat4(1.0f), angle, axis) * glm::vec4(v, 0.0f));
+}
+
+// Glint anisotropy stretches each glint's angular lobe along the tangent (A*^-1 on Sigma_a): moving the half
+// vector along the tangent keeps the same glints lit, moving it along the bitangent switches them.
+TEST(Kemppinen2025, AnisotropyStretchesGlintLobesAlongTheTangent) {
+    GlintRig rig("plane90");
+    const int size = 96;
+    glm::vec3 light = glm::normalize(rig.base().lights[0].vector);
+    const float delta = 0.015f;   // isotropic glints (alpha* = 0.02) decorrelate to ~0.7 over this move
+    glm::vec3 alongTangent = rotated(light, {0, 0, 1}, delta);    // moves h along world x = tangent
+    glm::vec3 alongBitangent = rotated(light, {1, 0, 0}, delta);  // moves h along world z = bitangent
+    auto glintOverSmooth = [&](const RenderSettings& s, const glm::vec3& l) {
+        RenderSettings sm = s;
+        sm.method = "smooth";
+        auto g = channel(rig.render(s, "glint", size, &l), 0);
+        auto d = channel(rig.render(sm, "glint", size, &l), 0);
+        for (size_t i = 0; i < g.size(); ++i) g[i] /= std::max(d[i], 1e-12f);
+        return g;
+    };
+    double correlations[2][2];
+    for (int a = 0; a < 2; ++a) {
+        float an = getenv("K25_AN") ? atof(getenv("K25_AN")) : 16.0f, kk = getenv("K25_K") ? atof(getenv("K25_K")) : 0.0f;
+        RenderSettings s = kemppinen({{"micro_roughness", 0.02f}, {"glint_anisotropy", a ? an : 1.0f}, {"neighbors", kk}});
+        auto base = glintOverSmooth(s, light);
+        correlations[a][0] = correlation(base, glintOverSmooth(s, alongTangent));
+        correlations[a][1] = correlation(base, glintOverSmooth(s, alongBitangent));
+        std::printf("glint_anisotropy %2d: correlation after moving h along tangent %.3f, along bitangent %.3f\n",
+                    a ? 16 : 1, correlations[a][0], correlations[a][1]);
+    }
+    EXPECT_NEAR(correlations[0][0], correlations[0][1], 0.15);   // isotropic: same decorrelation both ways
+    EXPECT_GT(correlations[1][0], correlations[1][1] + 0.3);     // anisotropic: long along the tangent
+    EXPECT_GT(correlations[1][0], correlations[0][0]);
+    EXPECT_LT(correlations[1][1], correlations[0][1]);
+}
+
+// Per-glint colours: glints take different hues, while the area mean colour (what the compensation term uses)
+// stays that of the uncoloured material.
+TEST(Kemppinen2025, ColouredGlintsKeepTheMeanColour) {
+    GlintRig rig("plane90");
+    const int size = 128;
+    // Sparse enough that explicit glints (not the white compensation) make most of the highlight.
+    auto plain = rig.render(kemppinen({{"density", 2e4f}, {"micro_roughness", 0.02f}}), "final", size);
+    auto coloured = rig.render(kemppinen({{"density", 2e4f}, {"micro_roughness", 0.02f}, {"color_variation", 1.0f}}),
+                               "final", size);
+    auto chroma = [&](const std::vector<float>& img) {
+        double sum = 0;
+        int n = 0;
+        for (size_t i = 0; i < img.size() / 4; ++i) {
+            float r = img[4 * i], g = img[4 * i + 1], b = img[4 * i + 2];
+            float m = (r + g + b) / 3.0f;
+            if (m < 1e-3f) continue;
+            sum += (std::max({r, g, b}) - std::min({r, g, b})) / m;
+            ++n;
+        }
+        return sum / std::max(n, 1);
+    };
+    double chromaPlain = chroma(plain), chromaColoured = chroma(coloured);
+    std::printf("mean per-pixel chroma: %.4f plain, %.4f coloured; channel means ratio", chromaPlain, chromaColoured);
+    EXPECT_GT(chromaColoured, chromaPlain + 0.3);
+    for (int c = 0; c < 3; ++c) {
+        double ratio = mean(channel(coloured, c)) / mean(channel(plain, c));
+        std::printf(" %.4f", ratio);
+        EXPECT_NEAR(ratio, 1.0, 0.05) << "channel " << c;
+    }
+    std::printf("\n");
+}
+
+// UV-free (triplanar) mode: the image does not depend on the mesh's UVs at all, and it converges to the smooth
+// NDF like the UV mode.
+TEST(Kemppinen2025, TriplanarModeIgnoresUvs) {
+    GlintRig rig("plane90");
+    const int size = 96;
+    RenderSettings triplanar = kemppinen({{"triplanar", 1.0f}});
+    RenderSettings uvMode = kemppinen({});
+    auto withUvs = rig.render(triplanar, "glint", size);
+    auto uvModeWithUvs = rig.render(uvMode, "glint", size);
+    for (glm::vec2& uv : rig.base().meshes[0].uvs) uv = glm::vec2(0.0f);   // a mesh without UVs
+    rig.reloadGeometry();
+    auto withoutUvs = rig.render(triplanar, "glint", size);
+    auto uvModeWithoutUvs = rig.render(uvMode, "glint", size);
+    double triplanarDiff = 0, uvDiff = 0;
+    for (size_t i = 0; i < withUvs.size(); i += 4) {
+        triplanarDiff = std::max(triplanarDiff, double(std::abs(withUvs[i] - withoutUvs[i])));
+        uvDiff = std::max(uvDiff, double(std::abs(uvModeWithUvs[i] - uvModeWithoutUvs[i])));
+    }
+    std::printf("max |D| change when UVs are removed: triplanar %.3g, UV mode %.3g\n", triplanarDiff, uvDiff);
+    EXPECT_EQ(triplanarDiff, 0.0);
+    EXPECT_GT(uvDiff, 0.5);
+    // Dense triplanar glints converge to the smooth render as well.
+    GapStats g = gapToSmooth(rig, kemppinen({{"triplanar", 1.0f}, {"density", 1e13f}}), smoothSettings(0), size);
+    EXPECT_LT(g.meanGap, 0.03);
+    EXPECT_LT(g.worstBlockGap, 0.03);
+}
+
+// Spatially varying density: the material/texture scale multiplies the density; zero means no glints.
+TEST(Kemppinen2025, DensityScaleMultipliesDensity) {
+    GlintRig rig("plane90");
+    const int size = 64;
+    RenderSettings scaled = kemppinen({{"density", 1e6f}});
+    scaled.common["material.density_scale"] = 4.0f;
+    auto a = rig.render(scaled, "glint", size);
+    auto b = rig.render(kemppinen({{"density", 4e6f}}), "glint", size);
+    EXPECT_EQ(a, b);
+    scaled.common["material.density_scale"] = 0.0f;
+    auto none = channel(rig.render(scaled, "glint", size), 0);
+    EXPECT_EQ(*std::max_element(none.begin(), none.end()), 0.0f);
 }
