@@ -172,6 +172,10 @@ glm::dvec3 filteredNdf(const Params& params, const PixelSetup& px, int ndf, cons
     double d = smoothD(h, px.alpha, ndf);
     glm::dvec2 xa = toPrior(h, px.alpha, ndf);
     glm::dvec2 sigmaA = params.microRoughness * std::sqrt(d) * px.angularStretch;
+    // The angular grid lives in x_a' = x_a / A*^-1, where the lobe is isotropic (kemppinen2025.glsl).
+    glm::dvec2 extent = 1.0 / px.angularStretch;
+    glm::dvec2 xaPrime = xa * extent;
+    double sigmaIso = params.microRoughness * std::sqrt(d);
     double angularNorm = 1.0 / (2.0 * kPi * sigmaA.x * sigmaA.y);
     double squareMass = intervalMass(xa.x, sigmaA.x, 0.0, 1.0) * intervalMass(xa.y, sigmaA.y, 0.0, 1.0);
     int side = params.neighbors == 16 ? 4 : 2;
@@ -189,21 +193,22 @@ glm::dvec3 filteredNdf(const Params& params, const PixelSetup& px, int ndf, cons
             int level = level0 + li;
             double w = (li == 0 ? 1.0 - frac : frac) * proc.weight;
             double resS = px.resolution * std::exp2(-level), resA = std::exp2(level);
-            glm::ivec2 a0 = glm::ivec2(glm::floor(xa * resA - blockOffset));
+            glm::ivec2 a0 = glm::ivec2(glm::floor(xaPrime * resA - blockOffset));
+            glm::ivec2 cellsA = glm::ivec2(glm::ceil(extent * resA));
             glm::ivec2 s0 = glm::ivec2(glm::floor(proc.xs * resS - 0.5));
             glm::dvec2 lo = glm::max(glm::dvec2(a0) / resA, glm::dvec2(0.0));
-            glm::dvec2 hi = glm::min(glm::dvec2(a0 + side) / resA, glm::dvec2(1.0));
-            double blockMass = intervalMass(xa.x, sigmaA.x, lo.x, hi.x) * intervalMass(xa.y, sigmaA.y, lo.y, hi.y);
+            glm::dvec2 hi = glm::min(glm::dvec2(a0 + side) / resA, extent);
+            double blockMass = intervalMass(xaPrime.x, sigmaIso, lo.x, hi.x) * intervalMass(xaPrime.y, sigmaIso, lo.y, hi.y);
             compensation += w * std::max(squareMass - blockMass, 0.0);
             for (int ai = 0; ai < side * side; ++ai) {
                 glm::ivec2 cellA = a0 + glm::ivec2(ai % side, ai / side);
-                bool valid = cellA.x >= 0 && cellA.y >= 0 && cellA.x < (1 << level) && cellA.y < (1 << level);
+                bool valid = cellA.x >= 0 && cellA.y >= 0 && cellA.x < cellsA.x && cellA.y < cellsA.y;
                 for (int si = 0; si < 4; ++si) {
                     glm::ivec2 cellS = s0 + glm::ivec2(si & 1, si >> 1);
                     if (count) ++*count;
                     if (!valid) continue;
                     GridPoint p = gridPoint(cellS, cellA, level, q);
-                    glm::dvec2 ga = (glm::dvec2(cellA) + p.angular) / resA;
+                    glm::dvec2 ga = (glm::dvec2(cellA) + p.angular) / (resA * extent);
                     glm::dvec2 gs = (glm::dvec2(cellS) + p.spatial) / resS;
                     if (glm::dot(ga - 0.5, ga - 0.5) >= 0.25) continue;
                     glm::dvec2 ds = proc.xs - gs, da = xa - ga;

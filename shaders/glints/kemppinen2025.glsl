@@ -134,7 +134,14 @@ vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     if (!px.hasGlints || h.z <= 0.0) return vec3(0.0);
     float d = kemppinenSmoothD(h, px.alpha, ndf);                       // line 4
     vec2 xa = kemppinenToPrior(h, px.alpha, ndf);                       // line 3
-    vec2 sigmaA = px.microRoughness * sqrt(d) * px.angularStretch;      // line 12
+    // Line 12: Sigma_a = d (alpha* A*^-1)^2. The angular grid lives in the inversely stretched angular space
+    // x_a' = x_a / A*^-1 (Sec. 3.3.6, "inversely stretching the angular space"), where the lobe is isotropic
+    // (sigma' = alpha* sqrt(d)) so the k nearest cells hold it in both directions; with A* = I it is x_a.
+    // (Our reading: Algorithm 1 keeps an isotropic grid, whose 2x2 window cannot hold a 16:1 lobe.)
+    vec2 sigmaA = px.microRoughness * sqrt(d) * px.angularStretch;
+    float sigmaIso = px.microRoughness * sqrt(d);
+    vec2 extent = 1.0 / px.angularStretch;                             // the unit square in x_a'
+    vec2 xs_a = xa * extent;                                           // x_a'
     float angularNorm = 1.0 / (2.0 * PI * sigmaA.x * sigmaA.y);
     // Eq. 10, first integral: the Gaussian's mass over the unit square enclosing U.
     float squareMass = kemppinenIntervalMass(xa.x, sigmaA.x, 0.0, 1.0) * kemppinenIntervalMass(xa.y, sigmaA.y, 0.0, 1.0);
@@ -149,30 +156,31 @@ vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
             int level = proc.level + li;
             float wLevel = (li == 0 ? 1.0 - proc.levelFrac : proc.levelFrac) * proc.weight;   // line 8
             float resA = exp2(float(level));                              // line 10
-            int cellsA = 1 << level;
-            vec2 xaCell = xa * resA;
+            ivec2 cellsA = ivec2(ceil(extent * resA));
+            vec2 xaCell = xs_a * resA;
             ivec2 a0 = ivec2(floor(xaCell - blockOffset));
-            vec2 invVarA = 1.0 / (sigmaA * sigmaA * resA * resA);         // angular exponent in cell units
+            float invVarA = 1.0 / (sigmaIso * sigmaIso * resA * resA);    // angular exponent in cell units
             // Sigma_s^-1 in cell units: Sigma_s^-1 / res_s^2 with res_s = sqrt(N) 2^-l.
             vec3 invCovS = proc.invCov * (px.invDensity * exp2(2.0 * float(level)));
             // Eq. 10, second integral: B(k) clipped to the square; the compensation C of Eq. 9, linearly blended.
             vec2 lo = max(vec2(a0) / resA, vec2(0.0));
-            vec2 hi = min(vec2(a0 + side) / resA, vec2(1.0));
-            float blockMass = kemppinenIntervalMass(xa.x, sigmaA.x, lo.x, hi.x) * kemppinenIntervalMass(xa.y, sigmaA.y, lo.y, hi.y);
+            vec2 hi = min(vec2(a0 + side) / resA, extent);
+            float blockMass = kemppinenIntervalMass(xs_a.x, sigmaIso, lo.x, hi.x) *
+                              kemppinenIntervalMass(xs_a.y, sigmaIso, lo.y, hi.y);
             compensation += wLevel * max(squareMass - blockMass, 0.0);
             for (int ai = 0; ai < side * side; ++ai) {                    // line 14: k angular cells
                 ivec2 cellA = a0 + ivec2(ai % side, ai / side);
-                bool valid = all(greaterThanEqual(cellA, ivec2(0))) && all(lessThan(cellA, ivec2(cellsA)));
+                bool valid = all(greaterThanEqual(cellA, ivec2(0))) && all(lessThan(cellA, cellsA));
                 for (int si = 0; si < 4; ++si) {                          // line 13: 2x2 spatial cells
                     ivec2 offset = ivec2(si & 1, si >> 1);
                     KemppinenPoint p = kemppinenPoint(proc.baseCell[li] + offset, cellA, level, q);   // lines 15-18
-                    vec2 ga = (vec2(cellA) + p.angular) / resA;
+                    vec2 ga = (vec2(cellA) + p.angular) / (resA * extent);    // back to x_a
                     vec2 fromCentre = ga - 0.5;
                     bool inDisk = dot(fromCentre, fromCentre) < 0.25;     // points outside U are rejected
                     vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
                     vec2 da = xaCell - vec2(cellA) - p.angular;
                     float e = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z +
-                              dot(da * da, invVarA);
+                              dot(da, da) * invVarA;
                     float weight = (valid && inDisk) ? kemppinenRoulette(p.roulette, wLevel) * exp(-0.5 * e) : 0.0;
                     processSum += weight * kemppinenGlintColor(p.hue, px.colorVariation);   // line 19
                     ++kemppinenGaussianCount;
