@@ -129,6 +129,80 @@ GlintPixel glintSetup(GlintSurface s) {
     return px;
 }
 
+// Per-light, per-level quantities shared by the cells of one level (Algorithm 1 lines 8-12).
+struct KemppinenLevel {
+    int level, process;
+    float weight;          // w_lambda x triplanar weight
+    ivec2 baseCell;        // spatial 2x2 neighbourhood
+    vec2 local;
+    vec3 invCovS;          // Sigma_s^-1 in spatial cell units
+    vec2 xaCell;           // x_a' in angular cell units
+    ivec2 cellsA;          // angular cells of the (stretched) unit square
+    vec2 cellToPrior;      // angular cell units -> x_a
+    float invVarA;         // 1 / sigma'^2 in angular cell units
+};
+
+// The points of one angular cell in the 2x2 spatial neighbourhood (Algorithm 1 lines 13-19).
+vec3 kemppinenCellTerms(KemppinenLevel lv, ivec2 cellA, float colorVariation) {
+    vec3 sum = vec3(0.0);
+    bool valid = all(greaterThanEqual(cellA, ivec2(0))) && all(lessThan(cellA, lv.cellsA));
+    vec2 da0 = lv.xaCell - vec2(cellA);
+    for (int si = 0; si < 4; ++si) {
+        ivec2 offset = ivec2(si & 1, si >> 1);
+        KemppinenPoint p = kemppinenPoint(lv.baseCell + offset, cellA, lv.level, lv.process);   // lines 15-18
+        vec2 fromCentre = (vec2(cellA) + p.angular) * lv.cellToPrior - 0.5;
+        bool inDisk = dot(fromCentre, fromCentre) < 0.25;     // points outside U are rejected
+        vec2 ds = lv.local - vec2(offset) - p.spatial;
+        vec2 da = da0 - p.angular;
+        float e = ds.x * ds.x * lv.invCovS.x + 2.0 * ds.x * ds.y * lv.invCovS.y + ds.y * ds.y * lv.invCovS.z +
+                  dot(da, da) * lv.invVarA;
+        float weight = (valid && inDisk) ? kemppinenRoulette(p.roulette, lv.weight) * exp(-0.5 * e) : 0.0;
+        // line 19 (colour only when asked: three cosines per point otherwise wasted)
+        sum += colorVariation > 0.0 ? weight * kemppinenGlintColor(p.hue, colorVariation) : vec3(weight);
+    }
+    kemppinenGaussianCount += 4;
+    return sum;
+}
+
+// Explicit sum and compensation of one point process at both levels (lines 7-20).
+void kemppinenProcessSum(KemppinenProcess proc, int q, float invDensity, int side, float colorVariation,
+                         vec2 xaPrime, vec2 extent, float sigmaIso, float squareMass, inout vec3 explicitSum,
+                         inout float compensation) {
+    vec3 processSum = vec3(0.0);
+    for (int li = 0; li < 2; ++li) {                                  // line 7: levels floor and ceil
+        KemppinenLevel lv;
+        lv.level = proc.level + li;
+        lv.process = q;
+        lv.weight = (li == 0 ? 1.0 - proc.levelFrac : proc.levelFrac) * proc.weight;   // line 8
+        lv.baseCell = proc.baseCell[li];
+        lv.local = proc.local[li];
+        float resA = exp2(float(lv.level));                           // line 10
+        lv.cellsA = ivec2(ceil(extent * resA));
+        lv.xaCell = xaPrime * resA;
+        lv.cellToPrior = 1.0 / (resA * extent);
+        lv.invVarA = 1.0 / (sigmaIso * sigmaIso * resA * resA);
+        // Sigma_s^-1 in cell units: Sigma_s^-1 / res_s^2 with res_s = sqrt(N) 2^-l (line 9).
+        lv.invCovS = proc.invCov * (invDensity * exp2(2.0 * float(lv.level)));
+        // Line 14: the k nearest angular cells, a side x side block around x_a'.
+        ivec2 a0 = ivec2(floor(lv.xaCell - (0.5 * float(side) - 0.5)));
+        // Eq. 10, second integral: B(k) clipped to the square; the compensation C of Eq. 9, blended linearly.
+        vec2 lo = max(vec2(a0) / resA, vec2(0.0));
+        vec2 hi = min(vec2(a0 + side) / resA, extent);
+        float blockMass = kemppinenIntervalMass(xaPrime.x, sigmaIso, lo.x, hi.x) *
+                          kemppinenIntervalMass(xaPrime.y, sigmaIso, lo.y, hi.y);
+        compensation += lv.weight * max(squareMass - blockMass, 0.0);
+        // Constant loop bounds per branch, so the compiler unrolls them.
+        if (side == 2) {
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 2; ++i) processSum += kemppinenCellTerms(lv, a0 + ivec2(i, j), colorVariation);
+        } else {
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) processSum += kemppinenCellTerms(lv, a0 + ivec2(i, j), colorVariation);
+        }
+    }
+    explicitSum += processSum * proc.spatialNorm;
+}
+
 // D*^f(x, h) in RGB (Algorithm 1). h: shading-frame half vector.
 vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     if (!px.hasGlints || h.z <= 0.0) return vec3(0.0);
@@ -141,57 +215,19 @@ vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     vec2 sigmaA = px.microRoughness * sqrt(d) * px.angularStretch;
     float sigmaIso = px.microRoughness * sqrt(d);
     vec2 extent = 1.0 / px.angularStretch;                             // the unit square in x_a'
-    vec2 xs_a = xa * extent;                                           // x_a'
+    vec2 xaPrime = xa * extent;
     float angularNorm = 1.0 / (2.0 * PI * sigmaA.x * sigmaA.y);
     // Eq. 10, first integral: the Gaussian's mass over the unit square enclosing U.
     float squareMass = kemppinenIntervalMass(xa.x, sigmaA.x, 0.0, 1.0) * kemppinenIntervalMass(xa.y, sigmaA.y, 0.0, 1.0);
-    int side = px.neighbourSide;
-    float blockOffset = 0.5 * float(side) - 0.5;   // k nearest cells: the side x side block around x_a
     vec3 explicitSum = vec3(0.0);
     float compensation = 0.0;
-    for (int q = 0; q < px.processCount; ++q) {
-        KemppinenProcess proc = px.process[q];
-        vec3 processSum = vec3(0.0);
-        for (int li = 0; li < 2; ++li) {                                  // line 7: levels floor and ceil
-            int level = proc.level + li;
-            float wLevel = (li == 0 ? 1.0 - proc.levelFrac : proc.levelFrac) * proc.weight;   // line 8
-            float resA = exp2(float(level));                              // line 10
-            ivec2 cellsA = ivec2(ceil(extent * resA));
-            vec2 xaCell = xs_a * resA;
-            ivec2 a0 = ivec2(floor(xaCell - blockOffset));
-            float invVarA = 1.0 / (sigmaIso * sigmaIso * resA * resA);    // angular exponent in cell units
-            // Sigma_s^-1 in cell units: Sigma_s^-1 / res_s^2 with res_s = sqrt(N) 2^-l.
-            vec3 invCovS = proc.invCov * (px.invDensity * exp2(2.0 * float(level)));
-            // Eq. 10, second integral: B(k) clipped to the square; the compensation C of Eq. 9, linearly blended.
-            vec2 lo = max(vec2(a0) / resA, vec2(0.0));
-            vec2 hi = min(vec2(a0 + side) / resA, extent);
-            float blockMass = kemppinenIntervalMass(xs_a.x, sigmaIso, lo.x, hi.x) *
-                              kemppinenIntervalMass(xs_a.y, sigmaIso, lo.y, hi.y);
-            compensation += wLevel * max(squareMass - blockMass, 0.0);
-            for (int ai = 0; ai < side * side; ++ai) {                    // line 14: k angular cells
-                ivec2 cellA = a0 + ivec2(ai % side, ai / side);
-                bool valid = all(greaterThanEqual(cellA, ivec2(0))) && all(lessThan(cellA, cellsA));
-                for (int si = 0; si < 4; ++si) {                          // line 13: 2x2 spatial cells
-                    ivec2 offset = ivec2(si & 1, si >> 1);
-                    KemppinenPoint p = kemppinenPoint(proc.baseCell[li] + offset, cellA, level, q);   // lines 15-18
-                    vec2 ga = (vec2(cellA) + p.angular) / (resA * extent);    // back to x_a
-                    vec2 fromCentre = ga - 0.5;
-                    bool inDisk = dot(fromCentre, fromCentre) < 0.25;     // points outside U are rejected
-                    vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
-                    vec2 da = xaCell - vec2(cellA) - p.angular;
-                    float e = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z +
-                              dot(da, da) * invVarA;
-                    float weight = (valid && inDisk) ? kemppinenRoulette(p.roulette, wLevel) * exp(-0.5 * e) : 0.0;
-                    processSum += weight * kemppinenGlintColor(p.hue, px.colorVariation);   // line 19
-                    ++kemppinenGaussianCount;
-                }
-            }
-        }
-        explicitSum += processSum * proc.spatialNorm;
-    }
+    kemppinenProcessSum(px.process[0], 0, px.invDensity, px.neighbourSide, px.colorVariation, xaPrime, extent, sigmaIso,
+                        squareMass, explicitSum, compensation);
+    for (int q = 1; q < px.processCount; ++q)   // triplanar (Sec. 3.3.6): the two other planes
+        kemppinenProcessSum(px.process[q], q, px.invDensity, px.neighbourSide, px.colorVariation, xaPrime, extent,
+                            sigmaIso, squareMass, explicitSum, compensation);
     // Eq. 11; the compensation uses the mean glint colour, which is white (kemppinenGlintColor).
-    vec3 result = d * (explicitSum * (angularNorm * px.invDensity) + vec3(compensation));
-    return result;
+    return d * (explicitSum * (angularNorm * px.invDensity) + vec3(compensation));
 }
 
 vec3 glintColorD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
