@@ -228,3 +228,223 @@ glm::dvec3 filteredNdf(const Params& params, const Surface& surface, const glm::
 }
 
 }  // namespace glimmer::kemppinen2025
+
+namespace glimmer::kemppinen2025 {
+
+SamplerRng::SamplerRng(uint32_t seed) : state(seed * 747796405u + 2891336453u) {}
+
+double SamplerRng::next() {
+    // PCG-RXS-M-XS 32 (O'Neill), the same steps as kemppinenRandom in the shader.
+    state = state * 747796405u + 2891336453u;
+    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    word = (word >> 22u) ^ word;
+    return double(word >> 8) * (1.0 / 16777216.0);
+}
+
+double priorJacobian(const glm::dvec3& h, const glm::dvec2& alpha, int ndf) {
+    if (h.z <= 0.0) return 0.0;
+    if (ndf == kBeckmann) return kPi * smoothD(h, alpha, ndf) * h.z / 4.0;
+    double v = glm::length(glm::dvec3(h.x / alpha.x, h.y / alpha.y, h.z));
+    return 1.0 / (8.0 * alpha.x * alpha.y * v * v * v);
+}
+
+double defensiveProbability(const Params& params, const PixelSetup& px, int ndf, int level) {
+    int side = params.neighbors == 16 ? 4 : 2;
+    double sigma = params.microRoughness * std::sqrt(smoothD(glm::dvec3(0, 0, 1), px.alpha, ndf));
+    double inside = std::erf(side * std::exp2(-level) / (2.0 * std::sqrt(2.0) * sigma));
+    return std::max(0.1, 1.0 - inside * inside);
+}
+
+namespace {
+
+// One explicit term of a block (Algorithm 2 lines 11-12), in the stretched angular space x_a'.
+struct SampleTerm {
+    glm::dvec2 centre;   // g_a'
+    double sigma;        // alpha* sqrt(D(T^-1(g_a)))
+    double weight;       // R N_s Luminance(c) (without the block mass)
+};
+
+struct BlockGeometry {
+    glm::dvec2 lo, hi;   // B clipped to the stretched square
+};
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// The terms of the block with lower-left angular cell a0 at `level` of process q. Points outside U, outside
+// the grid or with zero weight are left out.
+int blockTerms(const Params& params, const PixelSetup& px, int ndf, int q, int level, double levelWeight,
+               glm::ivec2 a0, SampleTerm* terms, BlockGeometry& geometry) {
+    const Process& proc = px.process[q];
+    int side = params.neighbors == 16 ? 4 : 2;
+    glm::dvec2 extent = 1.0 / px.angularStretch;
+    double resA = std::exp2(level), resS = px.resolution * std::exp2(-level);
+    glm::ivec2 cellsA = glm::ivec2(glm::ceil(extent * resA));
+    glm::ivec2 s0 = glm::ivec2(glm::floor(proc.xs * resS - 0.5));
+    glm::dmat2 invCov = glm::inverse(proc.covariance);
+    geometry.lo = glm::max(glm::dvec2(a0) / resA, glm::dvec2(0.0));
+    geometry.hi = glm::min(glm::dvec2(a0 + side) / resA, extent);
+    int count = 0;
+    for (int ai = 0; ai < side * side; ++ai) {
+        glm::ivec2 cellA = a0 + glm::ivec2(ai % side, ai / side);
+        if (cellA.x < 0 || cellA.y < 0 || cellA.x >= cellsA.x || cellA.y >= cellsA.y) continue;
+        for (int si = 0; si < 4; ++si) {
+            glm::ivec2 cellS = s0 + glm::ivec2(si & 1, si >> 1);
+            GridPoint p = gridPoint(cellS, cellA, level, q);
+            glm::dvec2 centre = (glm::dvec2(cellA) + p.angular) / resA;
+            glm::dvec2 ga = centre / extent;
+            if (glm::dot(ga - 0.5, ga - 0.5) >= 0.25) continue;
+            glm::dvec2 ds = proc.xs - (glm::dvec2(cellS) + p.spatial) / resS;
+            double spatial = std::exp(-0.5 * glm::dot(ds, invCov * ds));
+            double w = roulette(p.roulette, levelWeight) * spatial * luminance(glintColor(p.hue, params.colorVariation));
+            if (!(w > 0.0)) continue;
+            double d = smoothD(fromPrior(ga, px.alpha, ndf), px.alpha, ndf);
+            terms[count++] = {centre, params.microRoughness * std::sqrt(d), w};
+        }
+    }
+    return count;
+}
+
+double termMass(const SampleTerm& t, const BlockGeometry& b) {
+    return intervalMass(t.centre.x, t.sigma, b.lo.x, b.hi.x) * intervalMass(t.centre.y, t.sigma, b.lo.y, b.hi.y);
+}
+
+// Truncated normal on [lo, hi] by inverting the CDF (erf differences are well conditioned on the side of the
+// mean nearer the interval; sampling from the far side's tail uses the mirrored interval).
+double sampleTruncatedNormal(double mean, double sigma, double lo, double hi, double u) {
+    double a = (lo - mean) / (std::sqrt(2.0) * sigma), b = (hi - mean) / (std::sqrt(2.0) * sigma);
+    bool mirrored = a > 0.0;
+    if (mirrored) {
+        std::swap(a, b);
+        a = -a;
+        b = -b;
+    }
+    double ea = std::erf(a), eb = std::erf(b);
+    double target = ea + u * (eb - ea);
+    // erf^-1 by Newton from a bracketing start (erf is monotone; a few steps reach double precision).
+    double x = std::clamp(0.5 * (a + b), a, b);
+    for (int i = 0; i < 60; ++i) {
+        double f = std::erf(x) - target;
+        double step = f / (2.0 / std::sqrt(kPi) * std::exp(-x * x));
+        double next = std::clamp(x - step, a, b);
+        if (std::abs(next - x) < 1e-14) {
+            x = next;
+            break;
+        }
+        x = next;
+    }
+    if (mirrored) x = -x;
+    return mean + std::sqrt(2.0) * sigma * x;
+}
+
+}  // namespace
+
+HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& px, int ndf, SamplerRng& rng) {
+    HalfVectorSample out;
+    if (!px.hasGlints) return out;
+    // Process by triplanar weight, level by the roulette of lines 4-6.
+    int q = 0;
+    double u = rng.next(), acc = 0.0;
+    for (int i = 0; i < px.processCount; ++i) {
+        acc += px.process[i].weight;
+        if (u < acc || i == px.processCount - 1) {
+            q = i;
+            break;
+        }
+    }
+    const Process& proc = px.process[q];
+    int level0 = int(std::floor(proc.lambda));
+    double frac = proc.lambda - level0;
+    int level = rng.next() < frac ? level0 + 1 : level0;
+    double levelWeight = (level == level0 ? 1.0 - frac : frac) * proc.weight;
+    glm::dvec2 extent = 1.0 / px.angularStretch;
+    glm::dvec2 xPrime;
+    if (rng.next() < defensiveProbability(params, px, ndf, level)) {
+        // Defensive branch: uniform in the disk U = the smooth NDF through T^-1.
+        double r = 0.5 * std::sqrt(rng.next()), phi = 2.0 * kPi * rng.next();
+        xPrime = (glm::dvec2(0.5) + r * glm::dvec2(std::cos(phi), std::sin(phi))) * extent;
+    } else {
+        int side = params.neighbors == 16 ? 4 : 2;
+        double resA = std::exp2(level);
+        glm::dvec2 xa = glm::dvec2(rng.next(), rng.next()) * extent;   // line 2 (over the square)
+        glm::ivec2 a0 = glm::ivec2(glm::floor(xa * resA - (0.5 * side - 0.5)));
+        SampleTerm terms[64];
+        BlockGeometry block;
+        int n = blockTerms(params, px, ndf, q, level, levelWeight, a0, terms, block);
+        double total = 0.0;
+        int chosen = -1;
+        for (int i = 0; i < n; ++i) {   // lines 9-15: reservoir sampling, one uniform per term
+            double w = terms[i].weight * termMass(terms[i], block);
+            total += w;
+            double r = rng.next();
+            if (w > 0.0 && r < w / total) chosen = i;
+        }
+        if (chosen < 0) {
+            // Empty block: uniform inside it (kept in the pdf).
+            xPrime = block.lo + glm::dvec2(rng.next(), rng.next()) * (block.hi - block.lo);
+        } else {
+            const SampleTerm& t = terms[chosen];
+            xPrime = {sampleTruncatedNormal(t.centre.x, t.sigma, block.lo.x, block.hi.x, rng.next()),
+                      sampleTruncatedNormal(t.centre.y, t.sigma, block.lo.y, block.hi.y, rng.next())};
+        }
+    }
+    out.prior = xPrime / extent;
+    if (glm::dot(out.prior - 0.5, out.prior - 0.5) >= 0.25) return out;   // outside U: no direction
+    out.h = fromPrior(out.prior, px.alpha, ndf);
+    out.pdf = samplePriorPdf(params, px, ndf, out.prior) * priorJacobian(out.h, px.alpha, ndf);
+    return out;
+}
+
+double samplePriorPdf(const Params& params, const PixelSetup& px, int ndf, const glm::dvec2& xa) {
+    if (!px.hasGlints || glm::dot(xa - 0.5, xa - 0.5) >= 0.25) return 0.0;
+    int side = params.neighbors == 16 ? 4 : 2;
+    glm::dvec2 extent = 1.0 / px.angularStretch;
+    glm::dvec2 xPrime = xa * extent;
+    double pdf = 0.0;
+    for (int q = 0; q < px.processCount; ++q) {
+        const Process& proc = px.process[q];
+        int level0 = int(std::floor(proc.lambda));
+        double frac = proc.lambda - level0;
+        for (int li = 0; li < 2; ++li) {
+            int level = level0 + li;
+            double pLevel = li == 0 ? 1.0 - frac : frac;
+            if (pLevel <= 0.0) continue;
+            double levelWeight = pLevel * proc.weight;
+            double rho = defensiveProbability(params, px, ndf, level);
+            double p = rho / (kPi * 0.25);
+            double resA = std::exp2(level);
+            glm::ivec2 cell = glm::ivec2(glm::floor(xPrime * resA));
+            double offset = 0.5 * side - 0.5;
+            for (int by = 0; by < side; ++by)
+                for (int bx = 0; bx < side; ++bx) {
+                    glm::ivec2 a0 = cell - glm::ivec2(bx, by);
+                    // Probability that x_a (uniform over the square) selects this block.
+                    glm::dvec2 lo = glm::max((glm::dvec2(a0) + offset) / resA, glm::dvec2(0.0));
+                    glm::dvec2 hi = glm::min((glm::dvec2(a0) + offset + 1.0) / resA, extent);
+                    if (hi.x <= lo.x || hi.y <= lo.y) continue;
+                    double pBlock = (hi.x - lo.x) * (hi.y - lo.y);
+                    SampleTerm terms[64];
+                    BlockGeometry block;
+                    int n = blockTerms(params, px, ndf, q, level, levelWeight, a0, terms, block);
+                    double total = 0.0, density = 0.0;
+                    for (int i = 0; i < n; ++i) {
+                        total += terms[i].weight * termMass(terms[i], block);
+                        glm::dvec2 d = xPrime - terms[i].centre;
+                        double s2 = terms[i].sigma * terms[i].sigma;
+                        density += terms[i].weight * std::exp(-0.5 * glm::dot(d, d) / s2) / (2.0 * kPi * s2);
+                    }
+                    double pInBlock = total > 0.0 ? density / total
+                                                  : 1.0 / ((block.hi.x - block.lo.x) * (block.hi.y - block.lo.y));
+                    p += (1.0 - rho) * pBlock * pInBlock;
+                }
+            pdf += proc.weight * pLevel * p;
+        }
+    }
+    return pdf;
+}
+
+double sampleSolidAnglePdf(const Params& params, const PixelSetup& px, int ndf, const glm::dvec3& h) {
+    if (h.z <= 0.0) return 0.0;
+    return samplePriorPdf(params, px, ndf, toPrior(h, px.alpha, ndf)) * priorJacobian(h, px.alpha, ndf);
+}
+
+}  // namespace glimmer::kemppinen2025

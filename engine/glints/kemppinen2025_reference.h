@@ -80,3 +80,36 @@ glm::dvec3 filteredNdf(const Params& params, const PixelSetup& pixel, int ndf, c
                        int* gaussianCount = nullptr);
 
 }  // namespace glimmer::kemppinen2025
+
+namespace glimmer::kemppinen2025 {
+
+// ---- Importance sampling of D*^f (Sec. 3.3.5, Algorithm 2), CPU twin of kemppinen2025_sampling.glsl.
+// One sample: a process (triplanar weight), a level (lambda's roulette, lines 4-6), then with probability
+// rho_l a defensive sample of the smooth NDF (uniform prior), otherwise x_a uniform over the prior square
+// (line 2; the square rather than the disk keeps the block probabilities exact), reservoir sampling over the
+// terms of the block B(x_a) (lines 9-15) with weights R N_s m_t(B) Luminance(c), and a truncated Gaussian
+// inside B for the chosen term (line 14). The pdf is exact: it sums over every block that contains the sample.
+struct HalfVectorSample {
+    glm::dvec3 h{0.0, 0.0, 1.0};
+    glm::dvec2 prior{0.5};   // the sample in prior space x_a
+    double pdf = 0.0;        // solid-angle pdf of h (0: no sample, e.g. outside U)
+};
+
+// A deterministic stream of uniform numbers (the GLSL twin uses the same integer steps).
+struct SamplerRng {
+    uint32_t state;
+    explicit SamplerRng(uint32_t seed);
+    double next();
+};
+
+HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& pixel, int ndf, SamplerRng& rng);
+// Density of the sampler in prior space (x_a) and over solid angle (h).
+double samplePriorPdf(const Params& params, const PixelSetup& pixel, int ndf, const glm::dvec2& xa);
+double sampleSolidAnglePdf(const Params& params, const PixelSetup& pixel, int ndf, const glm::dvec3& h);
+// |J_T|: prior area per solid angle at h (GGX 1 / (8 ax ay |M^T h|^3), Beckmann pi D cos / 4).
+double priorJacobian(const glm::dvec3& h, const glm::dvec2& alpha, int ndf);
+// Probability of the defensive (smooth-NDF) branch at a level: the share of a lobe at the NDF peak that falls
+// outside the k-neighbourhood, at least 0.1.
+double defensiveProbability(const Params& params, const PixelSetup& pixel, int ndf, int level);
+
+}  // namespace glimmer::kemppinen2025
