@@ -596,7 +596,8 @@ void runSamplingCase(const SamplingCase& c) {
     std::printf("[%s] lambda %.2f: %d of %u samples valid; pdf GL vs CPU differs by > 1%% at %d of %d\n", c.label,
                 px.process[0].lambda, valid, n, pdfMismatch, checked);
     EXPECT_LE(pdfMismatch, checked / 100) << c.label;
-    EXPECT_GT(valid, int(n * 0.9)) << c.label;
+    // x_a is uniform over the prior square, so blocks outside the disk U waste a few samples.
+    EXPECT_GT(valid, int(n * 0.85)) << c.label;
 
     // 2. Chi-square of the prior-space histogram against the integrated pdf (16 x 16 bins, 12 x 12 midpoints).
     const int bins = 16, sub = 12;
@@ -661,6 +662,25 @@ void runSamplingCase(const SamplingCase& c) {
     std::printf("[%s] int D*^f cos: Monte Carlo %.5f (std err %.5f, %u samples) vs quadrature %.5f\n", c.label, mc,
                 stdErr, n, quad);
     EXPECT_NEAR(mc / quad, 1.0, 0.01) << c.label;
+
+    // 4. Fig. 7's claim: lower variance than sampling the smooth NDF (uniform prior through T^-1), same count.
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    double sumSmooth = 0.0, sumSqSmooth = 0.0;
+    for (uint32_t i = 0; i < n; ++i) {
+        double r = 0.5 * std::sqrt(u01(rng)), phi = 2.0 * 3.14159265358979 * u01(rng);
+        glm::dvec2 x = 0.5 + r * glm::dvec2(std::cos(phi), std::sin(phi));
+        glm::dvec3 h = k25::fromPrior(x, px.alpha, c.ndf);
+        double pdf = k25::priorJacobian(h, px.alpha, c.ndf) / (0.25 * 3.14159265358979);
+        double v = glm::dot(k25::filteredNdf(params, px, c.ndf, h), glm::dvec3(1.0 / 3.0)) * h.z / pdf;
+        sumSmooth += v;
+        sumSqSmooth += v * v;
+    }
+    double mcSmooth = sumSmooth / n;
+    double stdErrSmooth = std::sqrt(std::max(sumSqSmooth / n - mcSmooth * mcSmooth, 0.0) / n);
+    std::printf("[%s] standard error with the glint sampler %.5f, with smooth-NDF sampling %.5f\n", c.label, stdErr,
+                stdErrSmooth);
+    EXPECT_LT(stdErr, stdErrSmooth) << c.label;
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "glints/methods.h"
 
@@ -308,8 +310,8 @@ double termMass(const SampleTerm& t, const BlockGeometry& b) {
     return intervalMass(t.centre.x, t.sigma, b.lo.x, b.hi.x) * intervalMass(t.centre.y, t.sigma, b.lo.y, b.hi.y);
 }
 
-// Truncated normal on [lo, hi] by inverting the CDF (erf differences are well conditioned on the side of the
-// mean nearer the interval; sampling from the far side's tail uses the mirrored interval).
+// Truncated normal on [lo, hi] by inverting the CDF (an interval entirely above the mean is mirrored below it,
+// where erf differences keep more precision).
 double sampleTruncatedNormal(double mean, double sigma, double lo, double hi, double u) {
     double a = (lo - mean) / (std::sqrt(2.0) * sigma), b = (hi - mean) / (std::sqrt(2.0) * sigma);
     bool mirrored = a > 0.0;
@@ -320,18 +322,14 @@ double sampleTruncatedNormal(double mean, double sigma, double lo, double hi, do
     }
     double ea = std::erf(a), eb = std::erf(b);
     double target = ea + u * (eb - ea);
-    // erf^-1 by Newton from a bracketing start (erf is monotone; a few steps reach double precision).
-    double x = std::clamp(0.5 * (a + b), a, b);
-    for (int i = 0; i < 60; ++i) {
-        double f = std::erf(x) - target;
-        double step = f / (2.0 / std::sqrt(kPi) * std::exp(-x * x));
-        double next = std::clamp(x - step, a, b);
-        if (std::abs(next - x) < 1e-14) {
-            x = next;
-            break;
-        }
-        x = next;
+    // erf^-1 by bisection (Newton from a tail start diverges where erf is flat); erf is 1 beyond |x| = 6.
+    double left = std::max(a, -6.0), right = std::min(b, 6.0);
+    if (left > right) return mean + std::sqrt(2.0) * sigma * (mirrored ? -0.5 * (a + b) : 0.5 * (a + b));
+    for (int i = 0; i < 64; ++i) {
+        double mid = 0.5 * (left + right);
+        if (std::erf(mid) < target) left = mid; else right = mid;
     }
+    double x = 0.5 * (left + right);
     if (mirrored) x = -x;
     return mean + std::sqrt(2.0) * sigma * x;
 }

@@ -73,8 +73,8 @@ float kemppinenTermMass(KemppinenTerm t, vec2 lo, vec2 hi) {
     return kemppinenIntervalMass(t.centre.x, t.sigma, lo.x, hi.x) * kemppinenIntervalMass(t.centre.y, t.sigma, lo.y, hi.y);
 }
 
-// Truncated normal on [lo, hi] by inverting the CDF with Newton steps on erf (mirrored so the interval lies on
-// the side of the mean where erf differences keep their precision).
+// Truncated normal on [lo, hi] by inverting the CDF (an interval entirely above the mean is mirrored below it,
+// where erf differences keep more precision).
 float kemppinenSampleTruncatedNormal(float mean, float sigma, float lo, float hi, float u) {
     float a = (lo - mean) / (sqrt(2.0) * sigma), b = (hi - mean) / (sqrt(2.0) * sigma);
     bool mirrored = a > 0.0;
@@ -85,12 +85,14 @@ float kemppinenSampleTruncatedNormal(float mean, float sigma, float lo, float hi
     }
     float ea = kemppinenErf(a), eb = kemppinenErf(b);
     float target = ea + u * (eb - ea);
-    float x = clamp(0.5 * (a + b), a, b);
-    for (int i = 0; i < 24; ++i) {
-        float f = kemppinenErf(x) - target;
-        float slope = max(2.0 / sqrt(PI) * exp(-x * x), 1e-30);
-        x = clamp(x - f / slope, a, b);
+    // erf^-1 by bisection (Newton from a tail start diverges where erf is flat); erf is 1 beyond |x| = 6.
+    float left = max(a, -6.0), right = min(b, 6.0);
+    if (left > right) return mean + sqrt(2.0) * sigma * (mirrored ? -0.5 * (a + b) : 0.5 * (a + b));
+    for (int i = 0; i < 32; ++i) {
+        float mid = 0.5 * (left + right);
+        if (kemppinenErf(mid) < target) left = mid; else right = mid;
     }
+    float x = 0.5 * (left + right);
     if (mirrored) x = -x;
     return mean + sqrt(2.0) * sigma * x;
 }
