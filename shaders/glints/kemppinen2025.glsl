@@ -26,6 +26,7 @@ struct KemppinenProcess {
     float levelFrac;       // lambda - floor(lambda): weight of level + 1
     ivec2 baseCell[2];     // lower-left cell of the 2x2 spatial neighbourhood, per level
     vec2 local[2];         // x_s res_s - baseCell, per level (cell units, avoids cancellation with large UVs)
+    vec3 invCovCell[2];    // Sigma_s^-1 / res_s^2: the inverse covariance in cell units, per level
 };
 
 struct GlintPixel {
@@ -74,6 +75,7 @@ KemppinenProcess kemppinenProcess(vec2 uv, vec2 dx, vec2 dy, vec2 stretch, float
         vec2 cellCoord = xs * resS;
         p.baseCell[i] = ivec2(floor(cellCoord - 0.5));
         p.local[i] = cellCoord - vec2(p.baseCell[i]);
+        p.invCovCell[i] = p.invCov / (resS * resS);
     }
     return p;
 }
@@ -181,8 +183,7 @@ void kemppinenProcessSum(KemppinenProcess proc, int q, float invDensity, int sid
         lv.xaCell = xaPrime * resA;
         lv.cellToPrior = 1.0 / (resA * extent);
         lv.invVarA = 1.0 / (sigmaIso * sigmaIso * resA * resA);
-        // Sigma_s^-1 in cell units: Sigma_s^-1 / res_s^2 with res_s = sqrt(N) 2^-l (line 9).
-        lv.invCovS = proc.invCov * (invDensity * exp2(2.0 * float(lv.level)));
+        lv.invCovS = proc.invCovCell[li];   // per pixel (line 9: res_s = sqrt(N) 2^-l)
         // Line 14: the k nearest angular cells, a side x side block around x_a'.
         ivec2 a0 = ivec2(floor(lv.xaCell - (0.5 * float(side) - 0.5)));
         // Eq. 10, second integral: B(k) clipped to the square; the compensation C of Eq. 9, blended linearly.

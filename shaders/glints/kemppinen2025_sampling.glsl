@@ -60,7 +60,7 @@ KemppinenTerm kemppinenBlockTerm(GlintPixel px, int ndf, KemppinenProcess proc, 
     vec2 ga = t.centre / extent;
     if (dot(ga - 0.5, ga - 0.5) >= 0.25) return t;
     vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
-    vec3 invCovS = proc.invCov * (px.invDensity * exp2(2.0 * float(level)));
+    vec3 invCovS = proc.invCovCell[li];
     float spatial = exp(-0.5 * (ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z));
     vec3 c = kemppinenGlintColor(p.hue, px.colorVariation);
     t.weight = kemppinenRoulette(p.roulette, levelWeight) * spatial * dot(c, vec3(0.2126, 0.7152, 0.0722));
