@@ -172,6 +172,7 @@ PixelSetup setupPixel(const Params& params, const Surface& s) {
 glm::dvec3 filteredNdf(const Params& params, const PixelSetup& px, int ndf, const glm::dvec3& h, int* count) {
     if (!px.hasGlints || h.z <= 0.0) return glm::dvec3(0.0);
     double d = smoothD(h, px.alpha, ndf);
+    if (d < 1e-20) return glm::dvec3(0.0);   // as in the shader: D underflows there in float
     glm::dvec2 xa = toPrior(h, px.alpha, ndf);
     glm::dvec2 sigmaA = params.microRoughness * std::sqrt(d) * px.angularStretch;
     // The angular grid lives in x_a' = x_a / A*^-1, where the lobe is isotropic (kemppinen2025.glsl).
@@ -300,6 +301,7 @@ int blockTerms(const Params& params, const PixelSetup& px, int ndf, int q, int l
             double w = roulette(p.roulette, levelWeight) * spatial * luminance(glintColor(p.hue, params.colorVariation));
             if (!(w > 0.0)) continue;
             double d = smoothD(fromPrior(ga, px.alpha, ndf), px.alpha, ndf);
+            if (d < 1e-20) continue;
             terms[count++] = {centre, params.microRoughness * std::sqrt(d), w};
         }
     }

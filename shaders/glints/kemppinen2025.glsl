@@ -167,7 +167,7 @@ vec3 kemppinenCellTerms(KemppinenLevel lv, ivec2 cellA, float colorVariation) {
 }
 
 // Explicit sum and compensation of one point process at both levels (lines 7-20).
-void kemppinenProcessSum(KemppinenProcess proc, int q, float invDensity, int side, float colorVariation,
+void kemppinenProcessSum(KemppinenProcess proc, int q, int side, float colorVariation,
                          vec2 xaPrime, vec2 extent, float sigmaIso, float squareMass, inout vec3 explicitSum,
                          inout float compensation) {
     vec3 processSum = vec3(0.0);
@@ -208,6 +208,9 @@ void kemppinenProcessSum(KemppinenProcess proc, int q, float invDensity, int sid
 vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     if (!px.hasGlints || h.z <= 0.0) return vec3(0.0);
     float d = kemppinenSmoothD(h, px.alpha, ndf);                       // line 4
+    // Where D underflows (Beckmann tails) no facet exists in practice; the lobe width alpha* sqrt(D) would
+    // reach 0 and the normalisations infinity, so stop here (NaN must never reach the framebuffer).
+    if (d < 1e-20) return vec3(0.0);
     vec2 xa = kemppinenToPrior(h, px.alpha, ndf);                       // line 3
     // Line 12: Sigma_a = d (alpha* A*^-1)^2. The angular grid lives in the inversely stretched angular space
     // x_a' = x_a / A*^-1 (Sec. 3.3.6, "inversely stretching the angular space"), where the lobe is isotropic
@@ -222,10 +225,10 @@ vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     float squareMass = kemppinenIntervalMass(xa.x, sigmaA.x, 0.0, 1.0) * kemppinenIntervalMass(xa.y, sigmaA.y, 0.0, 1.0);
     vec3 explicitSum = vec3(0.0);
     float compensation = 0.0;
-    kemppinenProcessSum(px.process[0], 0, px.invDensity, px.neighbourSide, px.colorVariation, xaPrime, extent, sigmaIso,
+    kemppinenProcessSum(px.process[0], 0, px.neighbourSide, px.colorVariation, xaPrime, extent, sigmaIso,
                         squareMass, explicitSum, compensation);
     for (int q = 1; q < px.processCount; ++q)   // triplanar (Sec. 3.3.6): the two other planes
-        kemppinenProcessSum(px.process[q], q, px.invDensity, px.neighbourSide, px.colorVariation, xaPrime, extent,
+        kemppinenProcessSum(px.process[q], q, px.neighbourSide, px.colorVariation, xaPrime, extent,
                             sigmaIso, squareMass, explicitSum, compensation);
     // Eq. 11; the compensation uses the mean glint colour, which is white (kemppinenGlintColor).
     return d * (explicitSum * (angularNorm * px.invDensity) + vec3(compensation));

@@ -30,7 +30,10 @@ float kemppinenSmoothD(vec3 h, vec2 alpha, int ndf) {
 
 // Sec. 3.2.1, Eq. 6-7: T = L o M~ for GGX. M~ (the microsurface transformation of Atanasov et al.) maps the GGX
 // of roughness (ax, ay) to the uniform NDF, |J_M~| = |M| / |M^T h|^4 = pi D(h); Lambert's equal-area projection
-// L(x, y, z) = (x, y) / sqrt(1 + z) maps the uniform hemisphere onto the unit disk.
+// L(x, y, z) = (x, y) / sqrt(1 + z) maps the uniform hemisphere onto the unit disk. Note: Eq. 6's |J| is the
+// NDF's transformation rule; as a solid-angle Jacobian M~ has |M| / |M^T h|^3, so T's Jacobian is
+// pi D |M^T h| / 8 rather than proportional to D (tested). The expectation of D*^f is D pointwise all the same,
+// because Eq. 5 weights every lobe by D(h) itself (Eq. 3 tip).
 vec2 kemppinenGgxToDisk(vec3 h, vec2 alpha) {
     vec3 w = normalize(vec3(h.xy / alpha, max(h.z, 0.0)));
     return w.xy / sqrt(1.0 + w.z);

@@ -66,6 +66,7 @@ KemppinenTerm kemppinenBlockTerm(GlintPixel px, int ndf, KemppinenProcess proc, 
     t.weight = kemppinenRoulette(p.roulette, levelWeight) * spatial * dot(c, vec3(0.2126, 0.7152, 0.0722));
     float d = kemppinenSmoothD(kemppinenFromPrior(ga, px.alpha, ndf), px.alpha, ndf);
     t.sigma = px.microRoughness * sqrt(d);
+    if (d < 1e-20) t.weight = 0.0;   // as in the evaluation: no lobe where D underflows
     return t;
 }
 
