@@ -48,8 +48,11 @@ int runRenderCommand(const std::vector<std::string>& argList) {
         std::filesystem::path parent = std::filesystem::absolute(outPath, ec).parent_path();
         if (!std::filesystem::is_directory(parent))
             throw Error("--out: " + outPath.string() + ": directory " + parent.string() + " does not exist");
+        bool existed = std::filesystem::exists(outPath);
         std::ofstream probe(outPath, std::ios::app);
         if (!probe) throw Error("--out: " + outPath.string() + ": cannot write");
+        probe.close();
+        if (!existed) std::filesystem::remove(outPath, ec);  // a failed render must not leave an empty file
     }
 
     RenderResult result = renderOffscreen(request);

@@ -1,0 +1,136 @@
+// Bad input: a one-line error naming the culprit, a non-zero exit, no crash, no output file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/files.h"
+#include "core/image_io.h"
+#include "support/process.h"
+
+using glimmer::test::runGlimmer;
+
+namespace {
+
+struct BadCase {
+    std::string name;
+    std::vector<std::string> args;
+    std::string culprit;   // must appear in the error line
+};
+
+int countLines(const std::string& text) {
+    int lines = 0;
+    for (char c : text) lines += c == '\n';
+    return lines + (!text.empty() && text.back() != '\n');
+}
+
+void expectCleanFailure(const BadCase& c) {
+    glimmer::test::ProcessResult r = runGlimmer(c.args);
+    EXPECT_EQ(r.signal, 0) << c.name << ": crashed with signal " << r.signal << "\n" << r.err;
+    EXPECT_GT(r.exitCode, 0) << c.name << ": exit code " << r.exitCode;
+    EXPECT_EQ(countLines(r.err), 1) << c.name << ": stderr should be one line, was:\n" << r.err;
+    EXPECT_NE(r.err.find(c.culprit), std::string::npos) << c.name << ": '" << c.culprit << "' not named in: " << r.err;
+    EXPECT_EQ(r.err.rfind("glimmer: ", 0), 0u) << r.err;
+}
+
+std::string tempFile(const std::string& dir, const std::string& name, const std::string& contents) {
+    std::string path = dir + "/" + name;
+    std::ofstream(path) << contents;
+    return path;
+}
+
+TEST(BadInput, EachGivesAOneLineErrorAndANonZeroExit) {
+    std::string dir = glimmer::test::makeTempDir("bad-input");
+    std::string out = dir + "/out.png";
+    std::string corrupt = tempFile(dir, "corrupt.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ {");
+    std::string badBuffer = tempFile(dir, "bad-buffer.gltf", R"({"asset":{"version":"2.0"},
+        "buffers":[{"byteLength":64,"uri":"missing.bin"}],"bufferViews":[{"buffer":0,"byteLength":36}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})");
+    const std::vector<BadCase> cases = {
+        {"missing scene file", {"render", "--scene", dir + "/no-such-scene.gltf", "--out", out}, "no-such-scene.gltf"},
+        {"corrupt glTF", {"render", "--scene", corrupt, "--out", out}, "corrupt.gltf"},
+        {"glTF with a missing buffer", {"render", "--scene", badBuffer, "--out", out}, "bad-buffer.gltf"},
+        {"unknown scene name", {"render", "--scene", "atlantis", "--out", out}, "atlantis"},
+        {"unknown method", {"render", "--method", "sparklez", "--out", out}, "sparklez"},
+        {"unknown --set key", {"render", "--set", "shininess=3", "--out", out}, "shininess"},
+        {"--set out of range", {"render", "--set", "material.alpha=7", "--out", out}, "material.alpha"},
+        {"--set not a number", {"render", "--set", "exposure=bright", "--out", out}, "exposure"},
+        {"bad --size (zero)", {"render", "--size", "0x256", "--out", out}, "--size"},
+        {"bad --size (text)", {"render", "--size", "huge", "--out", out}, "--size"},
+        {"bad --size (too large)", {"render", "--size", "100000x100000", "--out", out}, "--size"},
+        {"unwritable --out directory", {"render", "--out", dir + "/missing-dir/out.png"}, "--out"},
+        {"unwritable --out file", {"render", "--out", "/proc/glimmer.png"}, "--out"},
+        {"unsupported --out type", {"render", "--out", dir + "/out.jpg"}, "--out"},
+        {"unknown camera", {"render", "--scene", "sphere", "--camera", "drone", "--out", out}, "drone"},
+        {"unknown aov", {"render", "--aov", "sparkle", "--out", out}, "sparkle"},
+        {"unknown backend", {"render", "--backend", "vulkan", "--out", out}, "vulkan"},
+        {"unknown argument", {"render", "--colour", "red", "--out", out}, "--colour"},
+        {"missing environment map", {"render", "--env", dir + "/sky.hdr", "--out", out}, "sky.hdr"},
+        {"missing --out", {"render", "--scene", "sphere"}, "--out"},
+    };
+    for (const BadCase& c : cases) expectCleanFailure(c);
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a failed render left an output file";
+}
+
+TEST(BadInput, ShaderCompileErrorNamesFileAndLine) {
+    std::string dir = glimmer::test::makeTempDir("bad-shader");
+    std::filesystem::path root = std::filesystem::path(dir) / "shaders";
+    std::filesystem::copy(glimmer::defaultShaderDir(), root, std::filesystem::copy_options::recursive);
+    // Break line 12 of an included file: the error must point at that file and line, not at the expanded source.
+    std::filesystem::path file = root / "common" / "brdf.glsl";
+    std::string text = glimmer::readTextFile(file);
+    std::vector<std::string> lines;
+    size_t start = 0;
+    for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) lines.push_back(text.substr(start, end - start));
+    ASSERT_GT(lines.size(), 12u);
+    lines[11] = "    float a2 = alpha * alpha +;  // broken on purpose";
+    std::ofstream rewritten(file, std::ios::trunc);
+    for (const std::string& l : lines) rewritten << l << "\n";
+    rewritten.close();
+    expectCleanFailure({"shader compile error", {"render", "--shader-dir", root.string(), "--out", dir + "/o.png"},
+                        "common/brdf.glsl:12:"});
+}
+
+TEST(BadInput, HelpAndListingsSucceed) {
+    for (const auto& args : std::vector<std::vector<std::string>>{
+             {"render", "--help"}, {"render", "--list-params"}, {"render", "--list-aovs"}, {"--help"}}) {
+        glimmer::test::ProcessResult r = runGlimmer(args);
+        EXPECT_EQ(r.exitCode, 0) << args.back() << ": " << r.err;
+        EXPECT_FALSE(r.out.empty());
+    }
+    glimmer::test::ProcessResult r = runGlimmer({"render", "--list-params"});
+    for (const char* expected : {"exposure", "material.alpha", "material.ndf", "Method smooth"})
+        EXPECT_NE(r.out.find(expected), std::string::npos) << expected;
+}
+
+TEST(RenderCommand, WritesPngAndExrAndPrintsStats) {
+    std::string dir = glimmer::test::makeTempDir("render-ok");
+    glimmer::test::ProcessResult png = runGlimmer({"render", "--scene", "sphere", "--size", "64x48", "--out", dir + "/a.png"});
+    ASSERT_EQ(png.exitCode, 0) << png.err;
+    EXPECT_NE(png.out.find("a.png"), std::string::npos);
+    glimmer::test::ProcessResult exr =
+        runGlimmer({"render", "--scene", "sphere", "--size", "64x48", "--stats", "--backend", "osmesa", "--out", dir + "/a.exr"});
+    ASSERT_EQ(exr.exitCode, 0) << exr.err;
+    nlohmann::json stats = nlohmann::json::parse(exr.out);
+    EXPECT_EQ(stats["resolution"][0], 64);
+    EXPECT_EQ(stats["resolution"][1], 48);
+    EXPECT_EQ(stats["backend"], "osmesa");
+    EXPECT_EQ(stats["method"], "smooth");
+    EXPECT_TRUE(stats["gl_renderer"].is_string());
+    EXPECT_EQ(stats["passes"].size(), 3u);
+    EXPECT_GT(stats["counts"]["triangles"].get<int>(), 0);
+    // EXR: linear float radiance, not tone-mapped (the highlight exceeds 1).
+    glimmer::ImageF image = glimmer::readImage(dir + "/a.exr");
+    ASSERT_EQ(image.width, 64);
+    ASSERT_EQ(image.height, 48);
+    float peak = 0.0f;
+    for (float v : image.pixels) peak = std::max(peak, v);
+    EXPECT_GT(peak, 1.0f);
+    glimmer::ImageF pngImage = glimmer::readImage(dir + "/a.png");
+    EXPECT_EQ(pngImage.width, 64);
+}
+
+}  // namespace
