@@ -77,6 +77,7 @@ void main() {
     bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
 
     vec3 position = worldPosition(pixel, depth);
+    s.position = position;
     vec3 toEye = normalize(u_cameraPosition.xyz - position);
     mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
     vec3 wo = worldToShading * toEye;
@@ -99,9 +100,16 @@ void main() {
         vec3 wi = worldToShading * towardLight;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
+#ifdef GLINT_COLOR_D
+        // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
+        vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        float D = dot(colorD, vec3(1.0 / 3.0));
+        vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
+#else
         float D = glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
-        if (i == 0) firstLightD = D;
         vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
+#endif
+        if (i == 0) firstLightD = D;
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
 

@@ -40,11 +40,40 @@ static GlintMethod zirr2016Method() {
              {"screen_space_scale", 1.5f, 0.1f, 10.0f, "mip texel size in pixels across the footprint's minor axis"}}};
 }
 
+// Kemppinen et al. 2025: semi-discrete NDF as a Gaussian mixture on an implicit 4D grid (shaders/glints/
+// kemppinen2025.glsl). Density is per unit UV area (UVs of the built-in scenes are metres).
+static GlintMethod kemppinen2025Method() {
+    return {"kemppinen2025",
+            "Kemppinen et al. 2025 (constant-time glinty NDF)",
+            "GLINT_METHOD_KEMPPINEN2025",
+            "glints/kemppinen2025.glsl",
+            "Kemppinen, Paulin, Thonat, Thiery, Lehtinen, Boubekeur 2025, Evaluating and Sampling Glinty NDFs in "
+            "Constant Time, ACM TOG 44(6)",
+            {
+                {"density", 2e6f, 1e2f, 1e14f, "glint points per unit UV area (Table 1 K_P), x material density scale",
+                 {}, false, true},
+                {"micro_roughness", 0.01f, 0.001f, 0.1f, "alpha*: angular width of one glint (Table 1, Eq. 4)", {},
+                 false, true},
+                {"filter_size", 0.7f, 0.5f, 1.2f, "f: Gaussian pixel filter, Sigma_s = f^2 J J^T (Algorithm 1)"},
+                {"neighbors", 0.0f, 0.0f, 1.0f, "k nearest angular cells evaluated explicitly (Sec. 3.3.4)",
+                 {"4", "16"}},
+                {"glint_anisotropy", 1.0f, 1.0f, 64.0f, "A*: stretch of the glints along the tangent (Sec. 3.3.6)",
+                 {}, false, true},
+                {"roughness_anisotropy", 1.0f, 0.1f, 10.0f,
+                 "alpha_x / alpha_y of the base NDF (alpha_x alpha_y = alpha^2; Sec. 3.2.1 M)", {}, false, true},
+                {"color_variation", 0.0f, 0.0f, 1.0f, "per-glint colour variation (Sec. 3.3.6; mean colour white)"},
+                {"triplanar", 0.0f, 0.0f, 1.0f, "UV-free triplanar mode: 3 world-plane processes (Sec. 3.3.6)", {},
+                 true},
+            },
+            nullptr};
+}
+
 const std::vector<GlintMethod>& glintMethods() {
     static const std::vector<GlintMethod> methods = {
         smoothMethod(),
         deliot2023Method(),
         zirr2016Method(),
+        kemppinen2025Method(),
     };
     return methods;
 }

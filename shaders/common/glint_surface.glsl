@@ -9,4 +9,5 @@ struct GlintSurface {
     int materialId;
     ivec2 pixel;
     vec3 n, t, b;       // world-space shading frame
+    vec3 position;      // world-space position (UV-free / triplanar methods)
 };
