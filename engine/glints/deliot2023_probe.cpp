@@ -36,7 +36,10 @@ std::vector<GlintProbeOutput> GlintMethodProbe::run(const std::vector<GlintProbe
     glBindBufferBase(GL_UNIFORM_BUFFER, 3, paramBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, inBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, outBuffer.id());
-    if (resources_) resources_->bind();
+    if (resources_) {
+        resources_->update(values_);
+        resources_->bind();
+    }
     program_.use();
     glDispatchCompute(GLuint((inputs.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "glints/deliot2023_resources.h"
+#include "glints/wang2020_resources.h"
 
 namespace glimmer {
 
@@ -68,12 +69,33 @@ static GlintMethod kemppinen2025Method() {
             nullptr};
 }
 
+// Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020.glsl).
+// Particle count N is per unit UV square (UVs of the built-in scenes are metres); the square tiles the plane.
+static GlintMethod wang2020Method() {
+    return {"wang2020", "Wang, Deng & Holzschuch 2020 (prefiltered discrete stochastic microfacets)",
+            "GLINT_METHOD_WANG2020", "glints/wang2020.glsl",
+            "Wang, Deng & Holzschuch 2020, Real-time glints rendering with prefiltered discrete stochastic "
+            "microfacets, Computer Graphics Forum 39(6)",
+            {{"particles", 1e5f, 1.0f, 1e9f, "N, particles per unit UV square (Eq. 4); edits rebuild the quadtree", {},
+              false, true},
+             {"gamma", 2.0f, 1.0f, 10.0f, "search cone half-angle gamma in degrees (Sec. 3.1; paper 1-6)"},
+             {"roughness", 0.1f, 0.02f, 1.0f, "Beckmann roughness of the particle normals (DPF extraction, Sec. 4.4)"},
+             {"depth", 11.0f, 4.0f, 12.0f, "quadtree depth (paper: 11)", {}, true},
+             {"micro_max", 4.0f, 0.0f, 1000.0f, "expected particles in footprint below which micro-scale (Sec. 4.3)"},
+             {"macro_min", 64.0f, 1.0f, 100000.0f, "expected particles in footprint above which macro-scale"},
+             {"seed", 1.0f, 0.0f, 1e6f, "random seed of the quadtree's multinomial splitting", {}, true},
+             {"table_scale", 1.0f, 1.0f, 3.0f, "DPF table resolution divisor: 1 = 90x90x180 (paper), 2 = 45x45x90",
+              {}, true}},
+            createWang2020Resources};
+}
+
 const std::vector<GlintMethod>& glintMethods() {
     static const std::vector<GlintMethod> methods = {
         smoothMethod(),
         deliot2023Method(),
         zirr2016Method(),
         kemppinen2025Method(),
+        wang2020Method(),
     };
     return methods;
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/params.h"
@@ -19,6 +20,10 @@ class GlintMethodResources {
 public:
     virtual ~GlintMethodResources() = default;
     virtual void bind() = 0;
+    // Called before every lighting pass with the method's current parameter values (before bind()): methods
+    // whose GPU data depend on parameters rebuild what changed here. Returns the passes that ran (name, wall ms)
+    // so the renderer lists them in --stats (material editing, Wang et al. 2020 Sec. 4.5).
+    virtual std::vector<std::pair<std::string, double>> update(const ParamValues&) { return {}; }
 };
 
 struct GlintMethod {

@@ -219,6 +219,11 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     gpuScene.drawInstances(scene);
     endPass("gbuffer");
 
+    // Parameter-dependent method data (tables, trees) rebuilt on demand; the passes that ran appear in --stats.
+    if (methodResources_)
+        for (const auto& [name, ms] : methodResources_->update(settings_.methodValues(settings_.method)))
+            if (measurePasses) timings_.push_back({name, ms, 0.0});
+
     beginPass("lighting");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
     glDisable(GL_DEPTH_TEST);

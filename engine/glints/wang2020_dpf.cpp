@@ -1,0 +1,237 @@
+#include "glints/wang2020_dpf.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
+#include "core/clock.h"
+#include "core/error.h"
+#include "core/log.h"
+
+namespace glimmer::wang2020 {
+
+namespace {
+
+constexpr uint32_t kCacheVersion = 1;
+
+int threadCount(int requested) {
+    if (requested > 0) return requested;
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Runs body(row) for rows [0, rows) on `threads` threads (rows interleaved so the load is balanced).
+template <class Body>
+void parallelRows(int rows, int threads, Body body) {
+    std::vector<std::thread> pool;
+    std::atomic<int> next{0};
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (int r = next++; r < rows; r = next++) body(r);
+        });
+    for (std::thread& th : pool) th.join();
+}
+
+// Orthonormal frame around unit vector z.
+void frameAround(glm::vec3 z, glm::vec3& x, glm::vec3& y) {
+    glm::vec3 a = std::abs(z.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+    x = glm::normalize(glm::cross(a, z));
+    y = glm::cross(z, x);
+}
+
+// Quadrature of f over the cone of half-angle gamma around axis: rings of equal angular width, 6(r+1) azimuths
+// on ring r, each point weighted by its sector's solid angle. Returns the integral.
+template <class F>
+float coneIntegral(glm::vec3 axis, float gamma, int rings, F f) {
+    glm::vec3 x, y;
+    frameAround(axis, x, y);
+    double sum = 0.0;
+    for (int r = 0; r < rings; ++r) {
+        float lo = gamma * r / rings, hi = gamma * (r + 1) / rings, mid = 0.5f * (lo + hi);
+        int azimuths = 6 * (r + 1);
+        float weight = 2.0f * kPi * (std::cos(lo) - std::cos(hi)) / azimuths;
+        for (int a = 0; a < azimuths; ++a) {
+            float phi = 2.0f * kPi * (a + 0.5f * (r % 2)) / azimuths;
+            glm::vec3 d = std::cos(mid) * axis + std::sin(mid) * (std::cos(phi) * x + std::sin(phi) * y);
+            sum += double(weight) * f(d);
+        }
+    }
+    return float(sum);
+}
+
+std::string cacheFileName(float alpha, DpfResolution res) {
+    char name[96];
+    std::snprintf(name, sizeof name, "wang2020_dpf_v%u_a%.3f_%dx%dx%d.bin", kCacheVersion, alpha, res.thetaI,
+                  res.thetaO, res.phi);
+    return name;
+}
+
+bool readTable(const std::filesystem::path& file, DpfTable& table) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return false;
+    table.values.resize(table.res.size());
+    in.read(reinterpret_cast<char*>(table.values.data()), std::streamsize(table.values.size() * sizeof(float)));
+    return bool(in) && in.peek() == std::char_traits<char>::eof();
+}
+
+void writeTable(const std::filesystem::path& file, const DpfTable& table) {
+    std::filesystem::path tmp = file;
+    tmp += ".tmp" + std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out) throw Error("wang2020: cannot write DPF cache file " + tmp.string());
+        out.write(reinterpret_cast<const char*>(table.values.data()),
+                  std::streamsize(table.values.size() * sizeof(float)));
+    }
+    std::filesystem::rename(tmp, file);  // atomic: a concurrent reader never sees half a table
+}
+
+}  // namespace
+
+glm::vec3 sphericalDirection(float theta, float phi) {
+    return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+float beckmannD(glm::vec3 m, float alpha) {
+    if (m.z <= 0.0f) return 0.0f;
+    float c2 = m.z * m.z, t2 = (1.0f - c2) / c2, a2 = alpha * alpha;
+    return std::exp(-t2 / a2) / (kPi * a2 * c2 * c2);
+}
+
+float reflectionDensity(glm::vec3 wi, glm::vec3 wo, float alpha) {
+    glm::vec3 h = wi + wo;
+    float len = glm::length(h);
+    if (len < 1e-6f) return 0.0f;
+    h /= len;
+    float ih = std::abs(glm::dot(wi, h));
+    if (ih < 1e-6f) return 0.0f;
+    return beckmannD(h, alpha) * h.z / (4.0f * ih);
+}
+
+float dpfByQuadrature(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int rings) {
+    return coneIntegral(wo, gamma, rings, [&](glm::vec3 o) { return reflectionDensity(wi, o, alpha); });
+}
+
+float DpfTable::lookup(float thetaI, float thetaO, float phi) const {
+    auto axis = [](float v, float range, int n, int& i0, float& f) {
+        float x = std::clamp(v / range * n - 0.5f, 0.0f, float(n - 1));
+        i0 = std::min(int(x), n - 2 < 0 ? 0 : n - 2);
+        f = std::min(x - i0, 1.0f);
+    };
+    phi = std::abs(phi);
+    if (phi > kPi) phi = 2.0f * kPi - phi;
+    int a, b, c;
+    float fa, fb, fc;
+    axis(thetaI, 0.5f * kPi, res.thetaI, a, fa);
+    axis(thetaO, 0.5f * kPi, res.thetaO, b, fb);
+    axis(phi, kPi, res.phi, c, fc);
+    float v = 0.0f;
+    for (int k = 0; k < 8; ++k) {
+        int da = k & 1, db = (k >> 1) & 1, dc = (k >> 2) & 1;
+        float w = (da ? fa : 1 - fa) * (db ? fb : 1 - fb) * (dc ? fc : 1 - fc);
+        if (w > 0.0f) v += w * at(a + da, b + db, c + dc);
+    }
+    return v;
+}
+
+float DpfTable::lookup(glm::vec3 wi, glm::vec3 wo) const {
+    float ti = std::acos(std::clamp(wi.z, -1.0f, 1.0f)), to = std::acos(std::clamp(wo.z, -1.0f, 1.0f));
+    float phi = std::atan2(wo.y, wo.x) - std::atan2(wi.y, wi.x);
+    if (phi < 0.0f) phi += 2.0f * kPi;
+    return lookup(ti, to, phi);
+}
+
+DpfTable generateDpf(float alpha, DpfResolution res, int threads) {
+    DpfTable table;
+    table.res = res;
+    table.gamma = kBaseGamma;
+    table.values.assign(res.size(), 0.0f);
+    parallelRows(res.thetaI, threadCount(threads), [&](int ti) {
+        glm::vec3 wi = sphericalDirection((ti + 0.5f) * 0.5f * kPi / res.thetaI, 0.0f);
+        for (int to = 0; to < res.thetaO; ++to)
+            for (int p = 0; p < res.phi; ++p) {
+                glm::vec3 wo = sphericalDirection((to + 0.5f) * 0.5f * kPi / res.thetaO, (p + 0.5f) * kPi / res.phi);
+                table.values[(size_t(ti) * res.thetaO + to) * res.phi + p] =
+                    std::min(dpfByQuadrature(wi, wo, alpha, kBaseGamma, 4), 1.0f);
+            }
+    });
+    return table;
+}
+
+std::filesystem::path defaultDpfCacheDir() {
+    if (const char* d = std::getenv("GLIMMER_DPF_CACHE"); d && *d) return d;
+    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::filesystem::path(d) / "glimmer";
+    if (const char* d = std::getenv("HOME"); d && *d) return std::filesystem::path(d) / ".cache" / "glimmer";
+    return std::filesystem::temp_directory_path() / "glimmer";
+}
+
+DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cacheDir, int threads) {
+    DpfSet set;
+    set.fromCache = true;
+    Stopwatch clock;
+    std::error_code ec;
+    std::filesystem::create_directories(cacheDir, ec);
+    for (size_t k = 0; k < kRoughnessSamples.size(); ++k) {
+        float alpha = kRoughnessSamples[k];
+        std::filesystem::path file = cacheDir / cacheFileName(alpha, res);
+        DpfTable table;
+        table.res = res;
+        if (!readTable(file, table)) {
+            set.fromCache = false;
+            Stopwatch one;
+            table = generateDpf(alpha, res, threads);
+            log::info("wang2020: DPF generation ", k + 1, "/", kRoughnessSamples.size(), " (alpha ", alpha, ", ",
+                      res.thetaI, "x", res.thetaO, "x", res.phi, ") in ", one.elapsedMs(), " ms");
+            if (!ec) writeTable(file, table);
+        }
+        set.tables.push_back(std::move(table));
+    }
+    if (!set.fromCache) {
+        set.generationMs = clock.elapsedMs();
+        log::info("wang2020: DPF tables generated in ", set.generationMs, " ms with ", threadCount(threads),
+                  " threads, cached in ", cacheDir.string());
+    }
+    return set;
+}
+
+DpfTable extractDpf(const DpfSet& set, float alpha) {
+    const auto& s = kRoughnessSamples;
+    if (!(alpha >= s.front() && alpha <= s.back()))
+        throw UsageError("wang2020: roughness " + std::to_string(alpha) + " outside the DPF samples [0.02, 1]");
+    size_t hi = 1;
+    while (hi + 1 < s.size() && s[hi] < alpha) ++hi;
+    float t = (alpha - s[hi - 1]) / (s[hi] - s[hi - 1]);
+    DpfTable out = set.tables[hi - 1];
+    const std::vector<float>& b = set.tables[hi].values;
+    for (size_t i = 0; i < out.values.size(); ++i) out.values[i] = (1.0f - t) * out.values[i] + t * b[i];
+    return out;
+}
+
+DpfTable accumulateDpf(const DpfTable& base, float gamma, int threads) {
+    DpfTable out;
+    out.res = base.res;
+    out.gamma = gamma;
+    out.values.assign(base.res.size(), 0.0f);
+    float invBase = 1.0f / coneSolidAngle(base.gamma);
+    // One ring per degree of gamma (the table's own resolution): finer would only resample interpolated values.
+    int rings = std::max(2, int(std::ceil(gamma / kDegree)));
+    const DpfResolution res = base.res;
+    parallelRows(res.thetaI, threadCount(threads), [&](int ti) {
+        float thetaI = (ti + 0.5f) * 0.5f * kPi / res.thetaI;
+        glm::vec3 wi = sphericalDirection(thetaI, 0.0f);
+        for (int to = 0; to < res.thetaO; ++to)
+            for (int p = 0; p < res.phi; ++p) {
+                glm::vec3 wo = sphericalDirection((to + 0.5f) * 0.5f * kPi / res.thetaO, (p + 0.5f) * kPi / res.phi);
+                float v = coneIntegral(wo, gamma, rings, [&](glm::vec3 o) {
+                    if (o.z <= 0.0f) return 0.0f;  // beyond the table: no reflection recorded there
+                    return base.lookup(wi, o) * invBase;
+                });
+                out.values[(size_t(ti) * res.thetaO + to) * res.phi + p] = std::min(v, 1.0f);
+            }
+    });
+    return out;
+}
+
+}  // namespace glimmer::wang2020

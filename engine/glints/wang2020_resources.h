@@ -1,0 +1,31 @@
+// GPU data of Wang et al. 2020 (shaders/glints/wang2020.glsl): the DPF table accumulated for the material's
+// roughness and gamma (3D texture, unit 8) and the particle quadtree (SSBO, binding 8). update() re-runs only the
+// passes a parameter change needs (Sec. 4.5): N, depth or seed -> quadtree; roughness or gamma -> DPF extraction
+// + accumulation; anything else -> nothing.
+#pragma once
+#include <memory>
+
+#include "gl/handles.h"
+#include "glints/methods.h"
+#include "glints/wang2020_dpf.h"
+#include "glints/wang2020_quadtree.h"
+
+namespace glimmer {
+
+class Wang2020Resources : public GlintMethodResources {
+public:
+    static constexpr int kDpfUnit = 8;
+    static constexpr int kQuadtreeBinding = 8;
+    std::vector<std::pair<std::string, double>> update(const ParamValues& values) override;
+    void bind() override;
+
+private:
+    float roughness_ = -1, gamma_ = -1, particles_ = -1, depth_ = -1, seed_ = -1, tableScale_ = -1;
+    std::shared_ptr<const wang2020::DpfSet> dpfSet_;
+    gl::Texture dpf_;
+    gl::Buffer quadtree_;
+};
+
+std::unique_ptr<GlintMethodResources> createWang2020Resources();
+
+}  // namespace glimmer
