@@ -203,8 +203,10 @@ TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
 }
 
 // Sec. 4.3: the three scales agree where they meet. On the tilted view the expected particle count per footprint
-// crosses both thresholds (4 and 64); in the bands [t/2, t) and [t, 2t) around each threshold t the shader's glint
-// energy is within 25 % of the explicit reference's (which has no scales), on either side.
+// grows with distance and crosses the thresholds (4 and 64); in the bands [t/2, t) and [t, 2t) around each
+// threshold t the shader's glint energy is within 25 % of the explicit reference's (which has no scales), on
+// either side. Roughness 0.4 is one of the DPF samples, so the roughness interpolation of the DPF extraction
+// (measured: 0.82-0.88 of the reference's energy in these bands at alpha 0.3) does not mix in.
 TEST(Wang2020Render, ScalesAgreeAtThresholds) {
     // N chosen per threshold so that the threshold's row lies inside the highlight of the tilted view.
     for (auto [threshold, particles] : {std::pair{4.0, 2.5e5f}, std::pair{64.0, 3.4e6f}}) {
