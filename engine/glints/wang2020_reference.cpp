@@ -1,5 +1,6 @@
 #include "glints/wang2020_reference.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "glints/wang2020_dpf.h"
@@ -23,6 +24,15 @@ ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm
     // Eq. 3 with D^ = reflecting / N, expressed as the D that Cook-Torrance's D G F / (4 cos cos) expects.
     r.D = float(4.0 * glm::dot(wi, h) * r.reflecting / (expected * coneSolidAngle(gamma) * h.z));
     return r;
+}
+
+float smithG1Beckmann(glm::vec3 w, float alpha) {
+    if (w.z <= 0.0f) return 0.0f;
+    float tanTheta = std::sqrt(std::max(0.0f, 1.0f - w.z * w.z)) / w.z;
+    if (tanTheta <= 0.0f) return 1.0f;
+    float a = 1.0f / (alpha * tanTheta);
+    if (a >= 1.6f) return 1.0f;
+    return (3.535f * a + 2.181f * a * a) / (1.0f + 2.276f * a + 2.577f * a * a);
 }
 
 }  // namespace glimmer::wang2020

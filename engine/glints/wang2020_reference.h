@@ -20,4 +20,35 @@ struct ReferenceResult {
 ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm::vec3 wi, glm::vec3 wo,
                                   float alpha, float gamma);
 
+// Environment lighting by Monte Carlo over the explicit particles (Eq. 10 with Eq. 3-4): particle k in A reflects
+// the environment around i_k = reflect(o, m_k) into the cone around o; over that cone (solid angle sigma(Omega_o))
+// the radiance is taken constant, so L = 1/(N a(A)) sum_k L_i(i_k) M(i_k, o) with M = (i.m) G / ((m.n)(o.n))
+// (Fresnel left to the caller, as in the shader). radiance(i) takes a shading-frame direction.
+template <class Radiance>
+glm::vec3 explicitParticleEnvironment(const Quadtree& tree, const Footprint& fp, glm::vec3 wo, float alpha,
+                                      Radiance radiance);
+float smithG1Beckmann(glm::vec3 w, float alpha);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
+
+}  // namespace glimmer::wang2020
+
+namespace glimmer::wang2020 {
+
+template <class Radiance>
+glm::vec3 explicitParticleEnvironment(const Quadtree& tree, const Footprint& fp, glm::vec3 wo, float alpha,
+                                      Radiance radiance) {
+    glm::dvec3 sum(0.0);
+    if (wo.z <= 0.0f) return glm::vec3(0.0f);
+    forEachParticle(tree, fp, alpha, [&](const Particle& p) {
+        float om = glm::dot(wo, p.normal);
+        if (om <= 0.0f) return;
+        glm::vec3 wi = 2.0f * om * p.normal - wo;
+        if (wi.z <= 0.0f) return;
+        float G = smithG1Beckmann(wi, alpha) * smithG1Beckmann(wo, alpha);
+        float M = om * G / (p.normal.z * wo.z);
+        sum += glm::dvec3(radiance(wi)) * double(M);
+    });
+    double expected = tree.particles * fp.area();
+    return expected > 0.0 ? glm::vec3(sum / expected) : glm::vec3(0.0f);
+}
+
 }  // namespace glimmer::wang2020

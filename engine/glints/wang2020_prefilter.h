@@ -1,0 +1,36 @@
+// Wang et al. 2020, Sec. 4.2 / 4.4: the environment prefilter pass (shaders/glints/wang2020_prefilter.comp) into
+// the 4D glint table over normal and view direction: per entry rgb = filtered glint radiance L^o(n, o) (Eq. 16,
+// K = 64), a = filtered DPF P^(n, o) (Eq. 17). Resolutions from roughness as in the paper's Table 2.
+#pragma once
+#include <filesystem>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+
+namespace glimmer::wang2020 {
+
+struct PrefilterResolution {
+    int thetaN = 10, phiN = 18, thetaO = 4, phiO = 12;
+    size_t size() const { return size_t(thetaN) * phiN * thetaO * phiO; }
+};
+// Table 2: alpha 0.1 -> 31 x 60 x 10 x 36, alpha 0.5 -> 10 x 18 x 4 x 12. Between and beyond, each dimension scales
+// with 1 / alpha, clamped to those two (our interpolation: the paper lists only these two).
+PrefilterResolution prefilterResolution(float alpha);
+
+class Prefilter {
+public:
+    static constexpr int kTableBinding = 16;  // SSBO read by shaders/ibl/wang2020.glsl (IBL-mode range 16-23)
+    explicit Prefilter(const std::filesystem::path& shaderRoot);
+    // Runs the pass (environment bound at units 6-7 and binding 7, DPF at unit 8); returns its wall time (ms).
+    double run(GLuint dpfTexture, float alpha, PrefilterResolution res);
+    void bind() const;
+    const PrefilterResolution& resolution() const { return res_; }
+    size_t bytes() const { return (res_.size() + 1) * 16; }
+
+private:
+    gl::Program program_;
+    gl::Buffer table_;
+    PrefilterResolution res_;
+};
+
+}  // namespace glimmer::wang2020
