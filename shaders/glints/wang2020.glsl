@@ -97,15 +97,15 @@ GlintPixel glintSetup(GlintSurface s) {
         float size = exp2(-float(node.x));
         vec2 nodeLo = vec2(node.yz) * size, nodeHi = nodeLo + size;
         if (any(greaterThan(nodeLo, hi)) || any(lessThan(nodeHi, lo))) continue;
-        if (meso) {
-            bool inside = wangInside(wangLocal(nodeLo, s.uv, inverseJ)) &&
-                          wangInside(wangLocal(nodeHi, s.uv, inverseJ)) &&
-                          wangInside(wangLocal(vec2(nodeLo.x, nodeHi.y), s.uv, inverseJ)) &&
-                          wangInside(wangLocal(vec2(nodeHi.x, nodeLo.y), s.uv, inverseJ));
-            if (inside) {
-                px.inFootprint += float(count);
-                continue;
-            }
+        // Separating axes of the parallelogram (its s and t axes; the AABB test above covers the box's axes):
+        // nodes beside a thin, slanted footprint are culled, not descended.
+        vec2 q0 = wangLocal(nodeLo, s.uv, inverseJ), q1 = wangLocal(nodeHi, s.uv, inverseJ);
+        vec2 q2 = wangLocal(vec2(nodeLo.x, nodeHi.y), s.uv, inverseJ), q3 = wangLocal(vec2(nodeHi.x, nodeLo.y), s.uv, inverseJ);
+        vec2 qMin = min(min(q0, q1), min(q2, q3)), qMax = max(max(q0, q1), max(q2, q3));
+        if (any(greaterThan(qMin, vec2(0.5))) || any(lessThan(qMax, vec2(-0.5)))) continue;
+        if (meso && all(lessThanEqual(abs(qMin), vec2(0.5))) && all(lessThanEqual(abs(qMax), vec2(0.5)))) {
+            px.inFootprint += float(count);   // node wholly inside A
+            continue;
         }
         if (node.x == depth) {
             int mask = (1 << depth) - 1;
