@@ -18,6 +18,9 @@
 #include "platform/context.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
+#include "render/environment.h"
+#include "core/files.h"
+#include "glints/wang2020_prefilter.h"
 
 using namespace glimmer;
 namespace w = glimmer::wang2020;
@@ -269,4 +272,38 @@ TEST(Wang2020BadInput, OutOfRangeParameters) {
             EXPECT_NE(std::string(e.what()).find(key.substr(key.find('.') + 1)), std::string::npos) << e.what();
         }
     }
+}
+
+// The environment prefilter pass (Eq. 16-17) on the GPU equals its CPU version for a constant environment of
+// radiance 1 (where the table must not depend on the normal): every entry within 2 % (float, texture filtering);
+// the Table 2 resolutions.
+TEST(Wang2020Prefilter, MatchesCpuForConstantEnvironment) {
+    useTestCache();
+    auto context = createHeadlessContext(Backend::Egl);
+    EXPECT_EQ(w::prefilterResolution(0.1f).size(), size_t(31 * 60 * 10 * 36));
+    EXPECT_EQ(w::prefilterResolution(0.5f).size(), size_t(10 * 18 * 4 * 12));
+    Environment environment(defaultShaderDir());
+    environment.update("constant:1,1,1", SunDescription{}, "--env");
+    environment.bind(1.0f, 0.0f);
+    Wang2020Resources resources;
+    float alpha = 0.4f, gamma = 3.0f;
+    resources.update({{"table_scale", 2}, {"depth", 6}, {"roughness", alpha}, {"gamma", gamma}});
+    w::Prefilter prefilter(defaultShaderDir());
+    w::PrefilterResolution res = w::prefilterResolution(alpha);
+    double ms = prefilter.run(resources.dpfTexture(), alpha, res);
+    std::printf("wang2020 prefilter %dx%dx%dx%d: %.1f ms\n", res.thetaN, res.phiN, res.thetaO, res.phiO, ms);
+    std::vector<glm::vec4> table = prefilter.read();
+    w::DpfTable dpf = w::accumulateDpf(w::extractDpf(testDpfSet(), alpha), gamma * w::kDegree);
+    for (int to = 0; to < res.thetaO; ++to)
+        for (int po = 0; po < res.phiO; ++po) {
+            float thetaO = (to + 0.5f) / res.thetaO * 0.5f * w::kPi, phiO = float(po) / res.phiO * 2 * w::kPi;
+            glm::vec2 cpu = w::prefilteredConstantEnvironment(dpf, alpha, w::sphericalDirection(thetaO, phiO));
+            EXPECT_GT(cpu.x, 0.0f);
+            for (int tn = 0; tn < res.thetaN; tn += 3)
+                for (int pn = 0; pn < res.phiN; pn += 5) {
+                    glm::vec4 gpu = table[((size_t(tn) * res.phiN + pn) * res.thetaO + to) * res.phiO + po];
+                    ASSERT_NEAR(gpu.x, cpu.x, 0.02f * cpu.x + 1e-6f) << tn << " " << pn << " " << to << " " << po;
+                    ASSERT_NEAR(gpu.w, cpu.y, 0.02f * cpu.y + 1e-7f) << tn << " " << pn << " " << to << " " << po;
+                }
+        }
 }

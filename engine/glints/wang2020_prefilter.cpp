@@ -30,6 +30,8 @@ double Prefilter::run(GLuint dpfTexture, float alpha, PrefilterResolution res) {
     std::vector<glm::vec4> header = {glm::vec4(res.thetaN, res.phiN, res.thetaO, res.phiO)};
     header.resize(res.size() + 1, glm::vec4(0.0f));
     table_ = gl::createBuffer(GLsizeiptr(header.size() * sizeof(glm::vec4)), header.data(), 0);
+    GLint previous = 0;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &previous);  // the caller may be between use() and draw
     program_.use();
     glProgramUniform4i(program_.id(), glGetUniformLocation(program_.id(), "u_tableSize"), res.thetaN, res.phiN,
                        res.thetaO, res.phiO);
@@ -39,7 +41,14 @@ double Prefilter::run(GLuint dpfTexture, float alpha, PrefilterResolution res) {
     glDispatchCompute(GLuint((res.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glFinish();
+    glUseProgram(GLuint(previous));
     return clock.elapsedMs();
+}
+
+std::vector<glm::vec4> Prefilter::read() const {
+    std::vector<glm::vec4> out(res_.size());
+    glGetNamedBufferSubData(table_.id(), sizeof(glm::vec4), GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
+    return out;
 }
 
 void Prefilter::bind() const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTableBinding, table_.id()); }

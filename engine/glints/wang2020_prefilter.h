@@ -3,6 +3,9 @@
 // K = 64), a = filtered DPF P^(n, o) (Eq. 17). Resolutions from roughness as in the paper's Table 2.
 #pragma once
 #include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -24,6 +27,7 @@ public:
     // Runs the pass (environment bound at units 6-7 and binding 7, DPF at unit 8); returns its wall time (ms).
     double run(GLuint dpfTexture, float alpha, PrefilterResolution res);
     void bind() const;
+    std::vector<glm::vec4> read() const;  // for tests: the table without its header entry
     const PrefilterResolution& resolution() const { return res_; }
     size_t bytes() const { return (res_.size() + 1) * 16; }
 

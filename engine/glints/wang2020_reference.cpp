@@ -26,6 +26,40 @@ ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm
     return r;
 }
 
+glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::vec3 wo) {
+    const int K = 64;
+    auto radicalInverse = [](uint32_t bits) {
+        bits = (bits << 16u) | (bits >> 16u);
+        bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+        bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+        bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+        bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+        return float(double(bits) * 2.3283064365386963e-10);
+    };
+    double radiance = 0.0;
+    for (int j = 0; j < K; ++j) {
+        float u1 = (j + 0.5f) / K, u2 = radicalInverse(uint32_t(j));
+        float tan2 = -alpha * alpha * std::log(1.0f - u1);
+        float cosM = 1.0f / std::sqrt(1.0f + tan2), sinM = std::sqrt(std::max(0.0f, 1.0f - cosM * cosM));
+        glm::vec3 m(sinM * std::cos(2 * kPi * u2), sinM * std::sin(2 * kPi * u2), cosM);
+        float om = glm::dot(wo, m);
+        if (om <= 0.0f) continue;
+        glm::vec3 wi = 2.0f * om * m - wo;
+        if (wi.z <= 0.0f) continue;
+        float P = std::min(dpf.lookup(wi, wo), 1.0f);
+        float M = glm::dot(wi, m) * smithG1Beckmann(wi, alpha) * smithG1Beckmann(wo, alpha) / (m.z * wo.z);
+        float pdf = beckmannD(m, alpha) * m.z / (4.0f * om);
+        radiance += P * M / std::max(pdf, 1e-12f);
+    }
+    double filtered = 0.0;
+    for (int k = 0; k < 9; ++k)
+        for (int l = 0; l < 36; ++l) {
+            float cosI = 1.0f - (k + 0.5f) / 9.0f, sinI = std::sqrt(1.0f - cosI * cosI), phi = (l + 0.5f) / 36.0f * 2 * kPi;
+            filtered += std::min(dpf.lookup(glm::vec3(sinI * std::cos(phi), sinI * std::sin(phi), cosI), wo), 1.0f);
+        }
+    return {float(radiance / K), float(filtered * 2.0 * kPi / (36 * 9))};
+}
+
 float smithG1Beckmann(glm::vec3 w, float alpha) {
     if (w.z <= 0.0f) return 0.0f;
     float tanTheta = std::sqrt(std::max(0.0f, 1.0f - w.z * w.z)) / w.z;

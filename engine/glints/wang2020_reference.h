@@ -6,6 +6,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include "glints/wang2020_dpf.h"
 #include "glints/wang2020_quadtree.h"
 
 namespace glimmer::wang2020 {
@@ -27,7 +28,12 @@ ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm
 template <class Radiance>
 glm::vec3 explicitParticleEnvironment(const Quadtree& tree, const Footprint& fp, glm::vec3 wo, float alpha,
                                       Radiance radiance);
-float smithG1Beckmann(glm::vec3 w, float alpha);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
+float smithG1Beckmann(glm::vec3 w, float alpha);
+
+// CPU version of the prefilter pass (shaders/glints/wang2020_prefilter.comp) for an environment of constant radiance
+// 1: (L^o, P^) of Eq. 16 (the same K = 64 Hammersley points) and Eq. 17 for a view direction wo in the normal's
+// frame (with constant radiance the table does not depend on the normal).
+glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::vec3 wo);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
 
 }  // namespace glimmer::wang2020
 

@@ -30,10 +30,19 @@ std::shared_ptr<const wang2020::DpfSet> dpfSetFor(int scale) {
     return slot;
 }
 
+thread_local Wang2020Resources* activeResources = nullptr;
+
 }  // namespace
+
+Wang2020Resources* Wang2020Resources::active() { return activeResources; }
+
+Wang2020Resources::~Wang2020Resources() {
+    if (activeResources == this) activeResources = nullptr;
+}
 
 std::vector<std::pair<std::string, double>> Wang2020Resources::update(const ParamValues& values) {
     std::vector<std::pair<std::string, double>> ran;
+    activeResources = this;
     float roughness = valueOf(values, "roughness"), gamma = valueOf(values, "gamma");
     float particles = valueOf(values, "particles"), depth = valueOf(values, "depth"), seed = valueOf(values, "seed");
     float tableScale = valueOf(values, "table_scale");
@@ -61,6 +70,7 @@ std::vector<std::pair<std::string, double>> Wang2020Resources::update(const Para
         glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         roughness_ = roughness;
         gamma_ = gamma;
+        ++dpfVersion_;
         ran.push_back({"wang2020.dpf_accumulation", clock.elapsedMs()});
         log::debug("wang2020: DPF extraction + accumulation (alpha ", roughness, ", gamma ", gamma, " deg) in ",
                    clock.elapsedMs(), " ms");

@@ -18,12 +18,21 @@ public:
     static constexpr int kQuadtreeBinding = 8;
     std::vector<std::pair<std::string, double>> update(const ParamValues& values) override;
     void bind() override;
+    // For the IBL mode's prefilter pass (Sec. 4.4): the accumulated DPF and what it was built for.
+    GLuint dpfTexture() const { return dpf_.id(); }
+    float roughness() const { return roughness_; }
+    float gamma() const { return gamma_; }
+    uint64_t dpfVersion() const { return dpfVersion_; }
+    // The instance last updated on this thread's context (the IBL mode reads the glint method's tables).
+    static Wang2020Resources* active();
+    ~Wang2020Resources() override;
 
 private:
     float roughness_ = -1, gamma_ = -1, particles_ = -1, depth_ = -1, seed_ = -1, tableScale_ = -1;
     std::shared_ptr<const wang2020::DpfSet> dpfSet_;
     gl::Texture dpf_;
     gl::Buffer quadtree_;
+    uint64_t dpfVersion_ = 0;
 };
 
 std::unique_ptr<GlintMethodResources> createWang2020Resources();
