@@ -85,7 +85,10 @@ static GlintMethod wang2020Method() {
              {"macro_min", 64.0f, 1.0f, 100000.0f, "expected particles in footprint above which macro-scale"},
              {"seed", 1.0f, 0.0f, 1e6f, "random seed of the quadtree's multinomial splitting", {}, true},
              {"table_scale", 1.0f, 1.0f, 3.0f, "DPF table resolution divisor: 1 = 90x90x180 (paper), 2 = 45x45x90",
-              {}, true}},
+              {}, true},
+             {"color_r", 1.0f, 0.0f, 1.0f, "glint colour, red (tint of the glints; edits re-run no pass, Sec. 4.5)"},
+             {"color_g", 1.0f, 0.0f, 1.0f, "glint colour, green"},
+             {"color_b", 1.0f, 0.0f, 1.0f, "glint colour, blue"}},
             createWang2020Resources};
 }
 

@@ -18,6 +18,9 @@
 // implicit complete tree of counts. The traversal gathers once per pixel in glintSetup (the paper's two-step
 // traversal with a tree cut, Sec. 5), so lights only compare lambdas.
 
+// Glint colour (Sec. 4.5): an RGB tint of the glints, through the RGB-NDF path of lighting.frag.
+#define GLINT_COLOR_D 1
+
 layout(binding = 8) uniform sampler3D u_wangDpf;
 layout(std430, binding = 8) readonly buffer WangQuadtree { uint u_wangCounts[]; };
 
@@ -151,6 +154,12 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
     float D = 4.0 * max(dot(wi, h), 0.0) * reflecting / (px.expected * sigmaO * h.z);
     return isnan(D) || isinf(D) ? 0.0 : D;
+}
+
+vec3 wangGlintColor() { return vec3(P_COLOR_R, P_COLOR_G, P_COLOR_B); }
+
+vec3 glintColorD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+    return wangGlintColor() * glintD(px, s, h, wi, wo);
 }
 
 // --aov footprint: x expected particle count N a(A), y scale (0 micro, 1 meso, 2 macro), z particles found, w nodes

@@ -64,7 +64,7 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
             factor = 1.0 / sigmaO;
         }
         vec3 F = F_Schlick(f0, clamp(wo.z, 0.0, 1.0));
-        vec3 specular = F * max(table.rgb, vec3(0.0)) * factor;
+        vec3 specular = wangGlintColor() * F * max(table.rgb, vec3(0.0)) * factor;
         return envDiffuse(s.n) * diffuseAlbedo + specular;
     }
 #endif
