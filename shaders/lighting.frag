@@ -1,6 +1,7 @@
 // Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
 // Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
 // metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+#define GLIMMER_LIGHTING_PASS 1   // lets method files read lighting-pass data (u_materials) that probes lack
 #include "common/frame.glsl"
 #include "common/brdf.glsl"
 #include "common/footprint.glsl"

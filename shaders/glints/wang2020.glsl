@@ -74,6 +74,10 @@ GlintPixel glintSetup(GlintSurface s) {
     px.scale = px.expected < P_MICRO_MAX ? WANG_SCALE_MICRO
              : (px.expected > P_MACRO_MIN ? WANG_SCALE_MACRO : WANG_SCALE_MESO);
     if (px.scale == WANG_SCALE_MACRO || px.area < 1e-20 || s.densityScale <= 0.0) return px;
+#ifdef GLIMMER_LIGHTING_PASS
+    // lighting.frag sets up every pixel; the traversal is only worth it on glinty materials.
+    if (u_materials[s.materialId].alphaMetallicNdfGlinty.w < 0.5) return px;
+#endif
 
     // Spatial traversal (Sec. 4.3 micro / meso): from the level whose cells are at least the footprint's AABB
     // (at most 2 x 2 of them overlap it), descend into non-empty nodes overlapping the AABB. Meso adds nodes
