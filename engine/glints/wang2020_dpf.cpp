@@ -41,23 +41,27 @@ void frameAround(glm::vec3 z, glm::vec3& x, glm::vec3& y) {
     y = glm::cross(z, x);
 }
 
-// Quadrature of f over the cone of half-angle gamma around axis: rings of equal angular width, 6(r+1) azimuths
-// on ring r, each point weighted by its sector's solid angle. Returns the integral.
-template <class F>
-float coneIntegral(glm::vec3 axis, float gamma, int rings, F f) {
+// Quadrature points of the cone of half-angle gamma around axis: rings of equal angular width, 6(r+1) azimuths on
+// ring r, each point weighted by its sector's solid angle (the weights sum to the cone's solid angle).
+template <class Visit>
+void forEachConePoint(glm::vec3 axis, float gamma, int rings, Visit visit) {
     glm::vec3 x, y;
     frameAround(axis, x, y);
-    double sum = 0.0;
     for (int r = 0; r < rings; ++r) {
         float lo = gamma * r / rings, hi = gamma * (r + 1) / rings, mid = 0.5f * (lo + hi);
         int azimuths = 6 * (r + 1);
         float weight = 2.0f * kPi * (std::cos(lo) - std::cos(hi)) / azimuths;
         for (int a = 0; a < azimuths; ++a) {
             float phi = 2.0f * kPi * (a + 0.5f * (r % 2)) / azimuths;
-            glm::vec3 d = std::cos(mid) * axis + std::sin(mid) * (std::cos(phi) * x + std::sin(phi) * y);
-            sum += double(weight) * f(d);
+            visit(std::cos(mid) * axis + std::sin(mid) * (std::cos(phi) * x + std::sin(phi) * y), weight);
         }
     }
+}
+
+template <class F>
+float coneIntegral(glm::vec3 axis, float gamma, int rings, F f) {
+    double sum = 0.0;
+    forEachConePoint(axis, gamma, rings, [&](glm::vec3 d, float weight) { sum += double(weight) * f(d); });
     return float(sum);
 }
 
@@ -214,22 +218,41 @@ DpfTable accumulateDpf(const DpfTable& base, float gamma, int threads) {
     out.res = base.res;
     out.gamma = gamma;
     out.values.assign(base.res.size(), 0.0f);
-    float invBase = 1.0f / coneSolidAngle(base.gamma);
+    const float invBase = 1.0f / coneSolidAngle(base.gamma);
     // One ring per degree of gamma (the table's own resolution): finer would only resample interpolated values.
-    int rings = std::max(2, int(std::ceil(gamma / kDegree)));
+    const int rings = std::max(2, int(std::ceil(gamma / kDegree)));
     const DpfResolution res = base.res;
-    parallelRows(res.thetaI, threadCount(threads), [&](int ti) {
-        float thetaI = (ti + 0.5f) * 0.5f * kPi / res.thetaI;
-        glm::vec3 wi = sphericalDirection(thetaI, 0.0f);
-        for (int to = 0; to < res.thetaO; ++to)
-            for (int p = 0; p < res.phi; ++p) {
-                glm::vec3 wo = sphericalDirection((to + 0.5f) * 0.5f * kPi / res.thetaO, (p + 0.5f) * kPi / res.phi);
-                float v = coneIntegral(wo, gamma, rings, [&](glm::vec3 o) {
-                    if (o.z <= 0.0f) return 0.0f;  // beyond the table: no reflection recorded there
-                    return base.lookup(wi, o) * invBase;
-                });
-                out.values[(size_t(ti) * res.thetaO + to) * res.phi + p] = std::min(v, 1.0f);
+    const size_t slice = size_t(res.thetaO) * res.phi;  // one theta_i row of the table
+    // The cone's points around o and their bilinear taps in the (theta_o, phi) slice do not depend on theta_i
+    // (wi sits at phi = 0 and at a cell centre of theta_i): compute the taps once per output (theta_o, phi) and
+    // apply them to every theta_i row.
+    parallelRows(res.thetaO, threadCount(threads), [&](int to) {
+        std::vector<std::pair<uint32_t, float>> taps;
+        for (int p = 0; p < res.phi; ++p) {
+            taps.clear();
+            glm::vec3 wo = sphericalDirection((to + 0.5f) * 0.5f * kPi / res.thetaO, (p + 0.5f) * kPi / res.phi);
+            forEachConePoint(wo, gamma, rings, [&](glm::vec3 o, float weight) {
+                if (o.z <= 0.0f) return;  // beyond the table: no reflection recorded there
+                float thetaO = std::acos(std::clamp(o.z, -1.0f, 1.0f));
+                float phi = std::abs(std::atan2(o.y, o.x));
+                float x = std::clamp(thetaO / (0.5f * kPi) * res.thetaO - 0.5f, 0.0f, float(res.thetaO - 1));
+                float y = std::clamp(phi / kPi * res.phi - 0.5f, 0.0f, float(res.phi - 1));
+                int x0 = std::min(int(x), std::max(res.thetaO - 2, 0)), y0 = std::min(int(y), std::max(res.phi - 2, 0));
+                float fx = std::min(x - x0, 1.0f), fy = std::min(y - y0, 1.0f);
+                float w = weight * invBase;
+                uint32_t i00 = uint32_t(x0 * res.phi + y0), i10 = i00 + uint32_t(res.phi);
+                taps.push_back({i00, w * (1 - fx) * (1 - fy)});
+                taps.push_back({i00 + 1, w * (1 - fx) * fy});
+                taps.push_back({i10, w * fx * (1 - fy)});
+                taps.push_back({i10 + 1, w * fx * fy});
+            });
+            for (int ti = 0; ti < res.thetaI; ++ti) {
+                const float* row = base.values.data() + size_t(ti) * slice;
+                double v = 0.0;
+                for (const auto& [index, w] : taps) v += double(w) * row[index];
+                out.values[size_t(ti) * slice + size_t(to) * res.phi + p] = std::min(float(v), 1.0f);
             }
+        }
     });
     return out;
 }
