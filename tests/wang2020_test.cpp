@@ -10,6 +10,9 @@
 #include <random>
 
 #include "core/error.h"
+#include "core/image_io.h"
+#include <algorithm>
+#include <filesystem>
 #include "glints/methods.h"
 #include "glints/wang2020_dpf.h"
 #include "glints/wang2020_quadtree.h"
@@ -178,6 +181,29 @@ std::vector<PixelPair> renderPairs(const GlintMaterial& m, const std::string& ca
     return pairs;
 }
 
+// Writes shader | reference side by side (glint radiance D x weight, scaled so the reference's 99th percentile
+// maps to white, sRGB-ish gamma) under the test output directory, for docs and eyeballing.
+void writeSideBySide(const std::vector<PixelPair>& pairs, const std::string& name) {
+    std::vector<double> refs;
+    for (size_t i = 0; i < 256 * 256; ++i) refs.push_back(pairs[i].ref * pairs[i].weight);
+    std::vector<double> sorted = refs;
+    std::sort(sorted.begin(), sorted.end());
+    double scale = 1.0 / std::max(sorted[size_t(sorted.size() * 0.99)], 1e-12);
+    std::vector<uint8_t> rgba(512 * 256 * 4, 255);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            const PixelPair& p = pairs[size_t(y) * 256 + x];
+            for (int side = 0; side < 2; ++side) {
+                double v = std::pow(std::clamp((side ? p.ref : p.gpu) * p.weight * scale, 0.0, 1.0), 1.0 / 2.2);
+                uint8_t c = uint8_t(std::lround(v * 255));
+                size_t o = (size_t(y) * 512 + x + side * 256) * 4;
+                rgba[o] = rgba[o + 1] = rgba[o + 2] = c;
+            }
+        }
+    std::filesystem::create_directories(GLIMMER_TEST_OUTPUT_DIR);
+    writePng(std::filesystem::path(GLIMMER_TEST_OUTPUT_DIR) / (name + ".png"), rgba.data(), 512, 256);
+}
+
 }  // namespace
 
 // Paper Table 1: average glint energy, total energy / glint count N, of the shader within 25 % of the explicit
@@ -200,6 +226,9 @@ TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
         std::printf("wang2020 alpha %.2f gamma %.0f N %.0e: average energy shader %.4g reference %.4g (ratio %.3f); "
                     "glinting pixels %d / %d\n",
                     m.alpha, m.gamma, m.particles, gpu / m.particles / seeds, ref / m.particles / seeds, gpu / ref, gpuGlints, refGlints);
+        char name[64];
+        std::snprintf(name, sizeof name, "wang2020_point_a%.1f_shader_vs_reference", m.alpha);
+        writeSideBySide(pairs, name);
         EXPECT_GT(refGlints, 200);
         EXPECT_NEAR(gpu / ref, 1.0, 0.25) << m.alpha;
     }
