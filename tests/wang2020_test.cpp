@@ -210,10 +210,10 @@ void writeSideBySide(const std::vector<PixelPair>& pairs, const std::string& nam
 // particle reference for the paper's two materials under a point light (256x256, top view). N being equal, this
 // compares the total glint energy. The second material is sparse (about 1.5 particles per pixel: micro-scale),
 // the first dense (about 15: meso-scale). The sparse one
-// averages 4 particle sets (seeds) to reach a few hundred glints.
+// averages 8 particle sets (seeds) to reach several hundred glints (one set: ratios 1.07-1.18 seen).
 TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
     for (GlintMaterial m : {GlintMaterial{0.1f, 6.0f, 1e6f}, GlintMaterial{0.5f, 2.0f, 1e5f}}) {
-        int seeds = m.particles < 1e6f ? 4 : 1;
+        int seeds = m.particles < 1e6f ? 8 : 1;
         std::vector<PixelPair> pairs = renderPairs(m, "top", seeds);
         double gpu = 0, ref = 0;
         int gpuGlints = 0, refGlints = 0;

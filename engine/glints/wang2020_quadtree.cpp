@@ -1,6 +1,7 @@
 #include "glints/wang2020_quadtree.h"
 
 #include <algorithm>
+#include <bit>
 #include <random>
 #include <thread>
 
@@ -18,6 +19,11 @@ template <class Rng>
 void splitFour(uint32_t n, Rng& rng, uint32_t out[4]) {
     auto half = [&](uint32_t m) -> uint32_t {
         if (m == 0) return 0;
+        if (m <= 32) {
+            // Binomial(m, 1/2) exactly: the number of set bits among m fair random bits.
+            uint32_t bits = uint32_t(rng());
+            return uint32_t(std::popcount(m == 32 ? bits : bits & ((1u << m) - 1u)));
+        }
         std::binomial_distribution<uint32_t> b(m, 0.5);
         return b(rng);
     };
