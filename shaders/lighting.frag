@@ -8,6 +8,7 @@
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
 #include GLINT_METHOD_FILE
+#include IBL_MODE_FILE
 
 layout(binding = 0) uniform sampler2D g_uvDuvdx;
 layout(binding = 1) uniform sampler2D g_duvdyMaterial;
@@ -91,7 +92,8 @@ void main() {
     GlintPixel glint = glintSetup(s);
 
     // Image-based lighting (common/ibl.glsl), or the constant ambient when the environment is off (--env none).
-    vec3 radiance = envEnabled() ? envLighting(s.n, toEye, diffuseAlbedo, f0, s.alpha, s.ndf)
+    vec3 radiance = envEnabled() ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty,
+                                               uint(u_viewport.z))
                                  : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
     float firstLightD = 0.0;
     int lightCount = int(u_exposure.y);

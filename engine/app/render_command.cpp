@@ -17,7 +17,7 @@ namespace glimmer {
 
 static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
-    "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none] [--spp N] [--aov NAME]\n"
+    "                      [--method NAME] [--ibl MODE] [--set KEY=VALUE ...] [--env PATH|none] [--spp N] [--aov NAME]\n"
     "                      [--frames N] [--shader-dir DIR] [--stats] --out FILE.png|FILE.exr\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n";

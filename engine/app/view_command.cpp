@@ -12,7 +12,7 @@
 namespace glimmer {
 
 static const char* kViewHelp =
-    "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
+    "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--ibl MODE] [--set KEY=VALUE ...]\n"
     "                    [--aov NAME] [--shader-dir DIR] [--no-vsync] [--hide-ui]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
     "  WASD move, Q/E down/up, Shift faster, wheel speed, right mouse button (or C) looks around,\n"

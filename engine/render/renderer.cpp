@@ -7,6 +7,7 @@
 #include "core/clock.h"
 #include "gl/debug.h"
 #include "glints/methods.h"
+#include "render/ibl_modes.h"
 #include "render/shader_interface.h"
 
 namespace glimmer {
@@ -16,6 +17,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     gl::enableDebugOutput();
     frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
+    iblParams_ = gl::createBuffer(kMaxIblParams * sizeof(float), nullptr);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
@@ -32,9 +34,12 @@ gl::ProgramDesc Renderer::lightingDesc() const {
     gl::ProgramDesc desc;
     desc.name = "lighting/" + method.id;
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
-    desc.defines = {method.define};
-    desc.preamble = methodParamsGlsl(method);
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    if (ibl.id != "prefiltered") desc.name += "+" + ibl.id;  // the default keeps the name tests and tools know
+    desc.defines = {method.define, ibl.define};
+    desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
+    desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
     return desc;
 }
 
@@ -52,6 +57,8 @@ void Renderer::buildPrograms() {
 void Renderer::createMethodResources() {
     const GlintMethod& method = findGlintMethod(settings_.method);
     methodResources_ = method.createResources ? method.createResources() : nullptr;
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    iblResources_ = ibl.createResources ? ibl.createResources() : nullptr;
 }
 
 void Renderer::reloadPrograms() {
@@ -92,7 +99,7 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    bool methodChanged = settings.method != settings_.method;
+    bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
     RenderSettings previous = settings_;
     settings_ = settings;
     if (methodChanged) {
@@ -159,6 +166,9 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodParams_.id());
+    std::vector<float> iblParams = packIblParams(findIblMode(settings_.ibl), settings_.iblValues);
+    glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblParams_.id());
 
     Stopwatch clock;
     int queryIndex = 0;
@@ -231,6 +241,13 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
+    if (iblResources_ && environment_.enabled()) {
+        // After the environment's bind: modes that prefilter it (wang2020) read its bound state.
+        for (const auto& [name, ms] : iblResources_->update(settings_.iblValues))
+            if (measurePasses) timings_.push_back({name, ms, 0.0});
+        iblResources_->bind();
+        lightingProgram_.use();
+    }
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());
     glBindVertexArray(emptyVao_.id());

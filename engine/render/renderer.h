@@ -81,6 +81,8 @@ private:
     RenderSettings settings_;
     gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    std::unique_ptr<GlintMethodResources> iblResources_;   // of the IBL mode (render/ibl_modes.h)
+    gl::Buffer iblParams_;
     Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_;

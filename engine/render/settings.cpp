@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
+#include "render/ibl_modes.h"
 
 namespace glimmer {
 
@@ -55,6 +56,15 @@ void RenderSettings::apply(const std::string& assignment) {
     if (const CommonParam* p = findCommon(key)) {
         common[key] = parseParamValue(p->spec, value, "--set", key);
         return;
+    }
+    if (key.rfind("ibl.", 0) == 0) {
+        const IblMode& mode = findIblMode(ibl);
+        for (const ParamSpec& spec : mode.params)
+            if (spec.name == key.substr(4)) {
+                iblValues[spec.name] = parseParamValue(spec, value, "--set", key);
+                return;
+            }
+        throw UsageError("--set: unknown parameter '" + key + "' for IBL mode " + ibl);
     }
     std::string methodId = method, name = key;
     if (size_t dot = key.find('.'); dot != std::string::npos) {

@@ -20,6 +20,8 @@ const std::vector<CommonParam>& commonParams();
 
 struct RenderSettings {
     std::string method = "smooth";
+    std::string ibl = "prefiltered";            // IBL mode id (render/ibl_modes.h), --ibl
+    ParamValues iblValues;                      // --set ibl.<name>=V
     ParamValues common;                         // keys of commonParams()
     std::map<std::string, ParamValues> methods; // method id -> its parameter values
     int debugView = 0;                          // AovInfo::viewId

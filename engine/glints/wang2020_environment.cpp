@@ -1,0 +1,72 @@
+#include "glints/wang2020_environment.h"
+
+#include <array>
+
+#include "core/files.h"
+#include "core/log.h"
+#include "glints/wang2020_prefilter.h"
+#include "glints/wang2020_resources.h"
+
+namespace glimmer {
+
+namespace {
+
+// What the prefiltered table depends on besides the DPF: the environment's source cube (unit 6) and its
+// uniform block (intensity, rotation; binding 7), read back from the bound state.
+struct EnvironmentKey {
+    GLint cube = 0;
+    std::array<float, 8> params{};
+    bool operator==(const EnvironmentKey&) const = default;
+};
+
+EnvironmentKey currentEnvironment() {
+    EnvironmentKey key;
+    GLint previousUnit = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &previousUnit);
+    glActiveTexture(GL_TEXTURE0 + 6);
+    glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, &key.cube);
+    glActiveTexture(GLenum(previousUnit));
+    GLint buffer = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 7, &buffer);
+    if (buffer != 0)  // EnvironmentUniforms: params and rotation follow the 9 SH vectors
+        glGetNamedBufferSubData(GLuint(buffer), 9 * 16, GLsizeiptr(sizeof(float) * 8), key.params.data());
+    return key;
+}
+
+class Wang2020EnvironmentResources : public GlintMethodResources {
+public:
+    std::vector<std::pair<std::string, double>> update(const ParamValues&) override {
+        std::vector<std::pair<std::string, double>> ran;
+        Wang2020Resources* glints = Wang2020Resources::active();
+        if (!glints || glints->dpfTexture() == 0) return ran;  // another glint method: the shader falls back
+        EnvironmentKey env = currentEnvironment();
+        if (glints == owner_ && glints->dpfVersion() == version_ && env == environment_) return ran;
+        if (!prefilter_) prefilter_ = std::make_unique<wang2020::Prefilter>(defaultShaderDir());
+        wang2020::PrefilterResolution res = wang2020::prefilterResolution(glints->roughness());
+        double ms = prefilter_->run(glints->dpfTexture(), glints->roughness(), res);
+        owner_ = glints;
+        version_ = glints->dpfVersion();
+        environment_ = env;
+        log::info("wang2020: environment prefilter ", res.thetaN, "x", res.phiN, "x", res.thetaO, "x", res.phiO, " (",
+                  prefilter_->bytes() / (1024.0 * 1024.0), " MB) in ", ms, " ms");
+        ran.push_back({"wang2020.prefilter", ms});
+        return ran;
+    }
+    void bind() override {
+        if (prefilter_) prefilter_->bind();
+    }
+
+private:
+    std::unique_ptr<wang2020::Prefilter> prefilter_;
+    const Wang2020Resources* owner_ = nullptr;
+    uint64_t version_ = 0;
+    EnvironmentKey environment_;
+};
+
+}  // namespace
+
+std::unique_ptr<GlintMethodResources> createWang2020EnvironmentResources() {
+    return std::make_unique<Wang2020EnvironmentResources>();
+}
+
+}  // namespace glimmer
