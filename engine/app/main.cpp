@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
             }
             if (!given("--camera")) defaults.insert(defaults.end(), {"--camera", "court"});
             if (!given("--size")) defaults.insert(defaults.end(), {"--size", "1280x720"});
-            if (!given("--out")) defaults.insert(defaults.end(), {"--out", "glimmer-default.png"});
+            if (!given("--out")) defaults.insert(defaults.end(), {"--out", std::filesystem::absolute("glimmer-default.png").string()});
             defaults.insert(defaults.end(), args.begin(), args.end());
             return glimmer::runRenderCommand(defaults);
         }
