@@ -19,7 +19,7 @@ RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaul
     request.settings.method = args.valueOr("--method", "smooth");
     findGlintMethod(request.settings.method);
     request.settings.ibl = args.valueOr("--ibl", "prefiltered");
-    findIblMode(request.settings.ibl);
+    checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);
     for (const std::string& assignment : args.values("--set")) request.settings.apply(assignment);
     if (auto aov = args.value("--aov")) request.settings.debugView = findAov(*aov).viewId;
     if (auto dir = args.value("--shader-dir")) {

@@ -17,10 +17,13 @@ namespace glimmer {
 
 static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
-    "                      [--method NAME] [--ibl MODE] [--set KEY=VALUE ...] [--env PATH|none] [--spp N] [--aov NAME]\n"
-    "                      [--frames N] [--shader-dir DIR] [--stats] --out FILE.png|FILE.exr\n"
+    "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
+    "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
+    "                      --out FILE.png|FILE.exr\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
-    "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n";
+    "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
+    "  --env: environment map (default: the scene's, else the procedural sky). --ibl: how it is integrated\n"
+    "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n";
 
 int runRenderCommand(const std::vector<std::string>& argList) {
     ArgReader args("render", argList);

@@ -7,7 +7,6 @@
 #include "core/clock.h"
 #include "gl/debug.h"
 #include "glints/methods.h"
-#include "render/ibl_modes.h"
 #include "render/shader_interface.h"
 
 namespace glimmer {
@@ -31,11 +30,11 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
 
 gl::ProgramDesc Renderer::lightingDesc() const {
     const GlintMethod& method = findGlintMethod(settings_.method);
-    gl::ProgramDesc desc;
-    desc.name = "lighting/" + method.id;
-    desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     const IblMode& ibl = findIblMode(settings_.ibl);
-    if (ibl.id != "prefiltered") desc.name += "+" + ibl.id;  // the default keeps the name tests and tools know
+    checkIblModeMethod(ibl, method.id);
+    gl::ProgramDesc desc;
+    desc.name = "lighting/" + method.id + (ibl.id == "prefiltered" ? "" : "/" + ibl.id);
+    desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     desc.defines = {method.define, ibl.define};
     desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
@@ -161,12 +160,16 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     frame.viewport = {width, height, int(frameIndex_), settings_.debugView};
     frame.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
                       settings_.common_("ambient"), 0.0f};
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
+    const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
+    frame.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(frame), &frame);
     std::vector<float> params = packMethodParams(findGlintMethod(settings_.method), settings_.methodValues(settings_.method));
     glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodParams_.id());
-    std::vector<float> iblParams = packIblParams(findIblMode(settings_.ibl), settings_.iblValues);
+    std::vector<float> iblParams = packIblParams(ibl, settings_.iblModeValues(ibl.id));
     glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
     glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblParams_.id());
 
@@ -214,44 +217,58 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 
     // G-buffer: reversed-Z (clear 0, GREATER passes), no blending, no culling (glTF double-sided surfaces).
-    beginPass("gbuffer");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    const float zero[4] = {0, 0, 0, 0};
-    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
-    float clearDepth = 0.0f;
-    glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
-    gbufferProgram_.use();
-    gpuScene.drawInstances(scene);
-    endPass("gbuffer");
+    if (!blendSample) {
+        beginPass("gbuffer");
+        glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
+        float clearDepth = 0.0f;
+        glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
+        gbufferProgram_.use();
+        gpuScene.drawInstances(scene);
+        endPass("gbuffer");
+    }
 
-    // Parameter-dependent method data (tables, trees) rebuilt on demand; the passes that ran appear in --stats.
-    if (methodResources_)
-        for (const auto& [name, ms] : methodResources_->update(settings_.methodValues(settings_.method)))
-            if (measurePasses) timings_.push_back({name, ms, 0.0});
+    // Parameter-dependent data of the glint method and the IBL mode (tables, trees, the prefiltered environment of
+    // wang2020), rebuilt on demand with the environment bound (a mode may prefilter it); the passes that ran are
+    // listed in --stats (material editing, Wang et al. 2020 Sec. 4.5).
+    if (methodResources_ || iblResources_) {
+        environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
+        auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
+            if (measurePasses)
+                for (const auto& [name, ms] : ran) timings_.push_back({name, ms, 0.0});
+        };
+        if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
+        if (iblResources_ && environment_.enabled()) {
+            auto values = settings_.iblValues.find(settings_.ibl);
+            record(iblResources_->update(values == settings_.iblValues.end() ? ParamValues{} : values->second));
+        }
+    }
 
     beginPass("lighting");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
+    if (blendSample) {
+        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1).
+        glEnable(GL_BLEND);
+        glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(sampleIndex_ + 1));
+        glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+    }
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
+    if (iblResources_) iblResources_->bind();
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
-    if (iblResources_ && environment_.enabled()) {
-        // After the environment's bind: modes that prefilter it (wang2020) read its bound state.
-        for (const auto& [name, ms] : iblResources_->update(settings_.iblValues))
-            if (measurePasses) timings_.push_back({name, ms, 0.0});
-        iblResources_->bind();
-        lightingProgram_.use();
-    }
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());
     glBindVertexArray(emptyVao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
     endPass("lighting");
 
     beginPass("tonemap");

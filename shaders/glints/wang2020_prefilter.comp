@@ -67,7 +67,7 @@ void main() {
         float G = G1_Beckmann(wi, u_alpha) * G1_Beckmann(wo, u_alpha);
         float M = dot(wi, m) * G / (m.z * wo.z);            // Eq. 11 without F, 1/(h.n) (see header)
         float pdf = D_Beckmann(m, u_alpha) * m.z / (4.0 * om);
-        radiance += envBackground(frame * wi) * (P * M / max(pdf, 1e-12));
+        radiance += envRadiance(frame * wi, 0.0) * (P * M / max(pdf, 1e-12));
     }
     radiance /= float(K);
 

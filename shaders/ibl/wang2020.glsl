@@ -4,7 +4,7 @@
 //   micro: L = L^o / (a(A) sigma(Omega_o) N P^) * sum_k H(lambda_k - P^)     (Eq. 20)
 //   meso:  L = L^o / (a(A) sigma(Omega_o) N) * (particles in A)              (Eq. 18)
 //   macro: L = L^o / sigma(Omega_o)                                          (Eq. 18 with the count N a(A))
-// Needs the glint method wang2020 (its GlintPixel); with another method, or on non-glinty materials, it is the
+// Needs the glint method wang2020 (its GlintPixel; the mode table enforces it); on non-glinty materials it is the
 // split-sum baseline (common/ibl.glsl). Diffuse: the SH irradiance (Sec. 5 "Other materials": a prefiltered map).
 // Deviation: F by Schlick at n.o on the filtered radiance (the table has no F, see the prefilter's header).
 // Deterministic: one evaluation, sampleIndex unused (the prefilter already integrated the environment).
