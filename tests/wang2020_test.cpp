@@ -25,6 +25,7 @@
 #include "render/environment_reference.h"
 #include "core/files.h"
 #include "glints/wang2020_prefilter.h"
+#include "support/process.h"
 
 using namespace glimmer;
 namespace w = glimmer::wang2020;
@@ -407,4 +408,57 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
                         gpu / ref);
             EXPECT_NEAR(gpu / ref, 1.0, 0.25) << env << " " << m.alpha;
         }
+}
+
+// Bad input through the command line: out-of-range gamma or N, a missing environment map, the IBL mode without its
+// glint method: a one-line error naming the culprit and a non-zero exit, no crash.
+TEST(Wang2020BadInput, CommandLine) {
+    std::string out = std::string(GLIMMER_TEST_OUTPUT_DIR) + "/wang2020_bad.png";
+    struct Case {
+        std::vector<std::string> args;
+        std::string expect;
+    };
+    for (const Case& c : std::vector<Case>{
+             {{"--method", "wang2020", "--set", "wang2020.gamma=30"}, "wang2020.gamma"},
+             {{"--method", "wang2020", "--set", "wang2020.particles=-5"}, "wang2020.particles"},
+             {{"--method", "wang2020", "--ibl", "wang2020", "--env", "/nonexistent/sky.hdr"}, "/nonexistent/sky.hdr"},
+             {{"--method", "smooth", "--ibl", "wang2020"}, "--method wang2020"}}) {
+        std::vector<std::string> args = {"render", "--scene", "plane90", "--size", "32x32", "--out", out};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        glimmer::test::ProcessResult r = glimmer::test::runGlimmer(args);
+        EXPECT_NE(r.exitCode, 0) << c.expect;
+        EXPECT_EQ(r.signal, 0) << c.expect;
+        EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+        EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+}
+
+// Sec. 4.5 through the renderer: with the environment path on, N edits re-run only the quadtree, gamma edits the
+// DPF accumulation and the environment prefilter, colour edits nothing (passes listed in the render's stats).
+TEST(Wang2020Editing, RendererRunsOnlyNeededPasses) {
+    useTestCache();
+    RenderRequest request;
+    request.scene = kScene;
+    request.width = request.height = 32;
+    request.environment = "constant:1,1,1";
+    request.settings.method = "wang2020";
+    request.settings.ibl = "wang2020";
+    for (const char* s : {"wang2020.table_scale=2", "wang2020.roughness=0.5", "material.alpha=0.5", "wang2020.depth=8"})
+        request.settings.apply(s);
+    OffscreenSession session(request);
+    auto passes = [&](const std::string& set) {
+        if (!set.empty()) request.settings.apply(set);
+        std::vector<std::string> names;
+        RenderResult result = session.render(request);
+        for (const auto& p : result.stats["passes"])
+            if (p["name"].get<std::string>().rfind("wang2020.", 0) == 0) names.push_back(p["name"]);
+        return names;
+    };
+    using V = std::vector<std::string>;
+    EXPECT_EQ(passes(""), (V{"wang2020.dpf_generation", "wang2020.dpf_accumulation", "wang2020.quadtree",
+                             "wang2020.prefilter"}));
+    EXPECT_EQ(passes(""), V{});
+    EXPECT_EQ(passes("wang2020.particles=3e5"), V{"wang2020.quadtree"});
+    EXPECT_EQ(passes("wang2020.gamma=4"), (V{"wang2020.dpf_accumulation", "wang2020.prefilter"}));
+    EXPECT_EQ(passes("wang2020.color_g=0.5"), V{});
 }
