@@ -5,26 +5,26 @@
 // build directory; the paper's 90 x 90 x 180 is the default of the method.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <random>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
-#include <algorithm>
-#include <filesystem>
 #include "glints/methods.h"
 #include "glints/wang2020_dpf.h"
+#include "glints/wang2020_prefilter.h"
 #include "glints/wang2020_quadtree.h"
 #include "glints/wang2020_reference.h"
 #include "glints/wang2020_resources.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
 #include "render/environment.h"
 #include "render/environment_reference.h"
-#include "core/files.h"
-#include "glints/wang2020_prefilter.h"
+#include "render/offscreen.h"
 #include "support/golden.h"
 #include "support/process.h"
 
@@ -72,8 +72,11 @@ double countedDpf(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int part
 // The DPF (quadrature of the reflection density over the cone) equals counting explicit Beckmann particles
 // (Eq. 6) at gamma = 1 degree; tolerance 4 binomial standard deviations + 3 %.
 TEST(Wang2020Dpf, QuadratureMatchesParticleCounting) {
-    struct Case { float alpha, thetaI, thetaO, phi; };
-    for (Case c : {Case{0.1f, 20, 25, 170}, Case{0.1f, 40, 38, 175}, Case{0.5f, 30, 10, 120}, Case{0.02f, 10, 10, 180}}) {
+    struct Case {
+        float alpha, thetaI, thetaO, phi;
+    };
+    for (Case c :
+         {Case{0.1f, 20, 25, 170}, Case{0.1f, 40, 38, 175}, Case{0.5f, 30, 10, 120}, Case{0.02f, 10, 10, 180}}) {
         glm::vec3 wi = w::sphericalDirection(c.thetaI * w::kDegree, 0.0f);
         glm::vec3 wo = w::sphericalDirection(c.thetaO * w::kDegree, c.phi * w::kDegree);
         double quad = w::dpfByQuadrature(wi, wo, c.alpha, w::kBaseGamma, 4);
@@ -95,7 +98,8 @@ TEST(Wang2020Dpf, AccumulationMatchesCountingAtGamma) {
     EXPECT_EQ(base.values, set.tables[2].values);
     w::DpfTable acc = w::accumulateDpf(base, 6.0f * w::kDegree);
     for (auto [ti, to, phi] : {std::tuple{20.f, 25.f, 170.f}, {35.f, 30.f, 160.f}, {10.f, 12.f, 100.f}}) {
-        glm::vec3 wi = w::sphericalDirection(ti * w::kDegree, 0.0f), wo = w::sphericalDirection(to * w::kDegree, phi * w::kDegree);
+        glm::vec3 wi = w::sphericalDirection(ti * w::kDegree, 0.0f),
+                  wo = w::sphericalDirection(to * w::kDegree, phi * w::kDegree);
         double counted = countedDpf(wi, wo, 0.1f, 6.0f * w::kDegree, 1000000, 11);
         EXPECT_NEAR(acc.lookup(wi, wo), counted, 0.08 * counted + 1e-3) << ti << " " << to << " " << phi;
     }
@@ -161,32 +165,32 @@ std::vector<PixelPair> renderPairs(const GlintMaterial& m, const std::string& ca
     OffscreenSession session(request);
     std::vector<PixelPair> pairs;
     for (int seed = 1; seed <= seeds; ++seed) {
-    request.settings.apply("wang2020.seed=" + std::to_string(seed));
-    auto aov = [&](const char* name) {
-        RenderRequest r = request;
-        r.settings.debugView = findAov(name).viewId;
-        return session.render(r).hdr;
-    };
-    std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), glint = aov("glint");
-    const Scene& scene = session.scene();
-    glm::vec3 eye{};
-    for (const Camera& c : scene.cameras)
-        if (c.name == camera) eye = c.position;
-    glm::vec3 light = scene.lights.at(0).vector;
-    float intensity = scene.lights.at(0).intensity;
-    float depth = 11;
-    w::Quadtree tree = w::buildQuadtree(m.particles, int(depth), uint32_t(seed));
-    for (size_t p = 0; p < uv.size() / 4; ++p) {
-        glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
-        w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
-        glm::vec3 pos(u.x, 0.0f, u.y);  // plane y = 0, UV = (x, z); shading frame t = +x, b = +z, n = +y
-        glm::vec3 toEye = glm::normalize(eye - pos), toLight = light - pos;
-        float d2 = glm::dot(toLight, toLight);
-        toLight = glm::normalize(toLight);
-        glm::vec3 wo(toEye.x, toEye.z, toEye.y), wi(toLight.x, toLight.z, toLight.y);
-        w::ReferenceResult ref = w::explicitParticleD(tree, fp, wi, wo, m.alpha, m.gamma * w::kDegree);
-        pairs.push_back({glint[4 * p], ref.D, m.particles * fp.area(), intensity / (d2 * 4.0 * wo.z)});
-    }
+        request.settings.apply("wang2020.seed=" + std::to_string(seed));
+        auto aov = [&](const char* name) {
+            RenderRequest r = request;
+            r.settings.debugView = findAov(name).viewId;
+            return session.render(r).hdr;
+        };
+        std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), glint = aov("glint");
+        const Scene& scene = session.scene();
+        glm::vec3 eye{};
+        for (const Camera& c : scene.cameras)
+            if (c.name == camera) eye = c.position;
+        glm::vec3 light = scene.lights.at(0).vector;
+        float intensity = scene.lights.at(0).intensity;
+        float depth = 11;
+        w::Quadtree tree = w::buildQuadtree(m.particles, int(depth), uint32_t(seed));
+        for (size_t p = 0; p < uv.size() / 4; ++p) {
+            glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
+            w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
+            glm::vec3 pos(u.x, 0.0f, u.y);  // plane y = 0, UV = (x, z); shading frame t = +x, b = +z, n = +y
+            glm::vec3 toEye = glm::normalize(eye - pos), toLight = light - pos;
+            float d2 = glm::dot(toLight, toLight);
+            toLight = glm::normalize(toLight);
+            glm::vec3 wo(toEye.x, toEye.z, toEye.y), wi(toLight.x, toLight.z, toLight.y);
+            w::ReferenceResult ref = w::explicitParticleD(tree, fp, wi, wo, m.alpha, m.gamma * w::kDegree);
+            pairs.push_back({glint[4 * p], ref.D, m.particles * fp.area(), intensity / (d2 * 4.0 * wo.z)});
+        }
     }
     return pairs;
 }
@@ -233,9 +237,11 @@ TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
             gpuGlints += p.gpu > 0;
             refGlints += p.ref > 0;
         }
-        std::printf("wang2020 alpha %.2f gamma %.0f N %.0e: average energy shader %.4g reference %.4g (ratio %.3f); "
-                    "glinting pixels %d / %d\n",
-                    m.alpha, m.gamma, m.particles, gpu / m.particles / seeds, ref / m.particles / seeds, gpu / ref, gpuGlints, refGlints);
+        std::printf(
+            "wang2020 alpha %.2f gamma %.0f N %.0e: average energy shader %.4g reference %.4g (ratio %.3f); "
+            "glinting pixels %d / %d\n",
+            m.alpha, m.gamma, m.particles, gpu / m.particles / seeds, ref / m.particles / seeds, gpu / ref, gpuGlints,
+            refGlints);
         char name[64];
         std::snprintf(name, sizeof name, "wang2020_point_a%.1f_shader_vs_reference", m.alpha);
         writeSideBySide(pairs, name);
@@ -252,7 +258,8 @@ TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
 TEST(Wang2020Render, ScalesAgreeAtThresholds) {
     // N chosen per threshold so that the threshold's row lies inside the highlight of the tilted view.
     for (auto [threshold, particles] : {std::pair{4.0, 2.5e5f}, std::pair{64.0, 3.4e6f}}) {
-        std::vector<PixelPair> pairs = renderPairs(GlintMaterial{0.4f, 4.0f, particles}, "tilted", threshold < 10 ? 2 : 1);
+        std::vector<PixelPair> pairs =
+            renderPairs(GlintMaterial{0.4f, 4.0f, particles}, "tilted", threshold < 10 ? 2 : 1);
         for (auto [lo, hi] : {std::pair{threshold / 2, threshold}, std::pair{threshold, threshold * 2}}) {
             double gpu = 0, ref = 0;
             int pixels = 0;
@@ -299,8 +306,8 @@ TEST(Wang2020Editing, OnlyNeededPassesRun) {
 
 // Bad input: out-of-range gamma, N, roughness or depth are one-line usage errors naming the key.
 TEST(Wang2020BadInput, OutOfRangeParameters) {
-    for (const char* bad : {"wang2020.gamma=20", "wang2020.gamma=0.5", "wang2020.particles=0", "wang2020.roughness=0.01",
-                            "wang2020.depth=14"}) {
+    for (const char* bad : {"wang2020.gamma=20", "wang2020.gamma=0.5", "wang2020.particles=0",
+                            "wang2020.roughness=0.01", "wang2020.depth=14"}) {
         RenderSettings settings;
         settings.method = "wang2020";
         try {
@@ -368,11 +375,10 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
             request.environment = env;
             request.settings.method = "wang2020";
             request.settings.ibl = "wang2020";
-            for (const std::string& s : {"material.alpha=" + std::to_string(m.alpha),
-                                         "wang2020.roughness=" + std::to_string(m.alpha),
-                                         "wang2020.gamma=" + std::to_string(m.gamma),
-                                         "wang2020.particles=" + std::to_string(m.particles),
-                                         std::string("wang2020.table_scale=2"), std::string("light.intensity=0")})
+            for (const std::string& s :
+                 {"material.alpha=" + std::to_string(m.alpha), "wang2020.roughness=" + std::to_string(m.alpha),
+                  "wang2020.gamma=" + std::to_string(m.gamma), "wang2020.particles=" + std::to_string(m.particles),
+                  std::string("wang2020.table_scale=2"), std::string("light.intensity=0")})
                 request.settings.apply(s);
             int seeds = m.particles < 1e6f ? 4 : 1;
             OffscreenSession session(request);
@@ -392,14 +398,15 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
                 w::Quadtree tree = w::buildQuadtree(m.particles, 11, uint32_t(seed));
                 for (size_t p = 0; p < uv.size() / 4; ++p) {
                     glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
-                    w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
+                    w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]),
+                                    glm::dvec2(dy[4 * p], dy[4 * p + 1])};
                     glm::vec3 toEye = glm::normalize(eye - glm::vec3(u.x, 0.0f, u.y));
                     glm::vec3 wo(toEye.x, toEye.z, toEye.y);
                     glm::vec3 L = w::explicitParticleEnvironment(tree, fp, wo, m.alpha, [&](glm::vec3 wi) {
                         if (constant) return glm::vec3(1.0f);
                         return envref::sampleEquirect(image, glm::vec3(wi.x, wi.z, wi.y));
                     });
-                    float f = 0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0));   // Schlick, f0 = 0.9 (as the shader)
+                    float f = 0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0));  // Schlick, f0 = 0.9 (as the shader)
                     ref += (L.x + L.y + L.z) / 3.0 * f;
                     gpu += (final[4 * p] + final[4 * p + 1] + final[4 * p + 2]) / 3.0;
                 }
@@ -456,8 +463,8 @@ TEST(Wang2020Editing, RendererRunsOnlyNeededPasses) {
         return names;
     };
     using V = std::vector<std::string>;
-    EXPECT_EQ(passes(""), (V{"wang2020.dpf_generation", "wang2020.dpf_accumulation", "wang2020.quadtree",
-                             "wang2020.prefilter"}));
+    EXPECT_EQ(passes(""),
+              (V{"wang2020.dpf_generation", "wang2020.dpf_accumulation", "wang2020.quadtree", "wang2020.prefilter"}));
     EXPECT_EQ(passes(""), V{});
     EXPECT_EQ(passes("wang2020.particles=3e5"), V{"wang2020.quadtree"});
     EXPECT_EQ(passes("wang2020.gamma=4"), (V{"wang2020.dpf_accumulation", "wang2020.prefilter"}));
@@ -476,8 +483,8 @@ TEST(Wang2020Golden, TiltedViewAcrossThresholds) {
         request.camera = "tilted";
         request.width = request.height = 256;
         request.settings.method = "wang2020";
-        for (std::string s : {"wang2020.gamma=4", "wang2020.roughness=0.4", "material.alpha=0.4", "wang2020.table_scale=2",
-                              "exposure=-1"})
+        for (std::string s : {"wang2020.gamma=4", "wang2020.roughness=0.4", "material.alpha=0.4",
+                              "wang2020.table_scale=2", "exposure=-1"})
             request.settings.apply(s);
         request.settings.apply(std::string("wang2020.particles=") + particles);
         RenderResult result = renderOffscreen(request);

@@ -7,10 +7,9 @@
 //  - extraction + accumulation (Sec. 4.4): interpolate the two tables bracketing the material roughness, then
 //    accumulate the 1-degree table over the cone of the material's search angle gamma.
 #pragma once
-#include <glm/glm.hpp>
-
 #include <array>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 

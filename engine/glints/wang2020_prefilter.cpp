@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/clock.h"
 

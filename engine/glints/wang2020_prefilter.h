@@ -3,9 +3,8 @@
 // K = 64), a = filtered DPF P^(n, o) (Eq. 17). Resolutions from roughness as in the paper's Table 2.
 #pragma once
 #include <filesystem>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "gl/handles.h"
 #include "gl/program.h"

@@ -28,10 +28,10 @@ void splitFour(uint32_t n, Rng& rng, uint32_t out[4]) {
         return b(rng);
     };
     uint32_t left = half(n), right = n - left;
-    out[0] = half(left);          // (0, 0)
-    out[2] = left - out[0];       // (0, 1)
-    out[1] = half(right);         // (1, 0)
-    out[3] = right - out[1];      // (1, 1)
+    out[0] = half(left);      // (0, 0)
+    out[2] = left - out[0];   // (0, 1)
+    out[1] = half(right);     // (1, 0)
+    out[3] = right - out[1];  // (1, 1)
 }
 
 // Splits the node at (level, x, y) into its children at level + 1.
@@ -48,7 +48,8 @@ void splitNode(Quadtree& t, int level, int x, int y, Rng& rng) {
 }  // namespace
 
 Quadtree buildQuadtree(double particles, int depth, uint32_t seed, int threads) {
-    if (depth < 2 || depth > 13) throw UsageError("wang2020: quadtree depth " + std::to_string(depth) + " outside [2, 13]");
+    if (depth < 2 || depth > 13)
+        throw UsageError("wang2020: quadtree depth " + std::to_string(depth) + " outside [2, 13]");
     if (!(particles >= 1.0 && particles <= 4e9))
         throw UsageError("wang2020: particle count " + std::to_string(particles) + " outside [1, 4e9]");
     Stopwatch clock;

@@ -7,16 +7,15 @@
 // (Eq. 7) and, for the explicit reference, a Beckmann normal, all from integer hashes shared with the GLSL
 // (shaders/glints/wang2020.glsl), so the CPU reference and the shader see the same particles.
 #pragma once
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace glimmer::wang2020 {
 
 struct Quadtree {
-    int depth = 0;            // leaves at level `depth` (2^depth x 2^depth cells)
-    double particles = 0;     // N per unit UV square
+    int depth = 0;                 // leaves at level `depth` (2^depth x 2^depth cells)
+    double particles = 0;          // N per unit UV square
     std::vector<uint32_t> counts;  // level l starts at levelOffset(l); row-major 2^l x 2^l
     double buildMs = 0.0;
 
@@ -45,8 +44,8 @@ inline float hashUnit(uint32_t leafId, uint32_t particle, uint32_t channel) {
 }
 
 struct Particle {
-    glm::dvec2 uv;   // unwrapped UV position
-    float lambda;    // Eq. 7 threshold variable
+    glm::dvec2 uv;     // unwrapped UV position
+    float lambda;      // Eq. 7 threshold variable
     glm::vec3 normal;  // Beckmann sample (explicit reference only), pdf D(m)(m.n)
 };
 // Particle k of the leaf at unwrapped cell (x, y).

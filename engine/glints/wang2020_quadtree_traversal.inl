@@ -11,7 +11,9 @@ void forEachParticle(const Quadtree& tree, const Footprint& fp, float alpha, Vis
     int x0 = int(std::floor(lo.x * cells)), x1 = int(std::floor(hi.x * cells));
     int y0 = int(std::floor(lo.y * cells)), y1 = int(std::floor(hi.y * cells));
     // Descend from the root of every tile the footprint touches, only into non-empty nodes overlapping the AABB.
-    struct Node { int level, x, y; };
+    struct Node {
+        int level, x, y;
+    };
     std::vector<Node> stack;
     for (int ty = int(std::floor(lo.y)); ty <= int(std::floor(hi.y)); ++ty)
         for (int tx = int(std::floor(lo.x)); tx <= int(std::floor(hi.x)); ++tx) stack.push_back({0, tx, ty});

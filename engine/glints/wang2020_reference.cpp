@@ -7,8 +7,8 @@
 
 namespace glimmer::wang2020 {
 
-ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm::vec3 wi, glm::vec3 wo,
-                                  float alpha, float gamma) {
+ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm::vec3 wi, glm::vec3 wo, float alpha,
+                                  float gamma) {
     ReferenceResult r;
     float cosGamma = std::cos(gamma);
     forEachParticle(tree, fp, alpha, [&](const Particle& p) {
@@ -54,7 +54,8 @@ glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::
     double filtered = 0.0;
     for (int k = 0; k < 9; ++k)
         for (int l = 0; l < 36; ++l) {
-            float cosI = 1.0f - (k + 0.5f) / 9.0f, sinI = std::sqrt(1.0f - cosI * cosI), phi = (l + 0.5f) / 36.0f * 2 * kPi;
+            float cosI = 1.0f - (k + 0.5f) / 9.0f, sinI = std::sqrt(1.0f - cosI * cosI),
+                  phi = (l + 0.5f) / 36.0f * 2 * kPi;
             filtered += std::min(dpf.lookup(glm::vec3(sinI * std::cos(phi), sinI * std::sin(phi), cosI), wo), 1.0f);
         }
     return {float(radiance / K), float(filtered * 2.0 * kPi / (36 * 9))};

@@ -12,14 +12,14 @@
 namespace glimmer::wang2020 {
 
 struct ReferenceResult {
-    float D = 0.0f;          // equivalent NDF value (same normalization as glintD, see the shader's header)
-    int inFootprint = 0;     // particles in A
-    int reflecting = 0;      // particles in A reflecting i into the cone around o
+    float D = 0.0f;       // equivalent NDF value (same normalization as glintD, see the shader's header)
+    int inFootprint = 0;  // particles in A
+    int reflecting = 0;   // particles in A reflecting i into the cone around o
 };
 
 // wi, wo: unit directions in the shading frame (z = normal). gamma in radians.
-ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm::vec3 wi, glm::vec3 wo,
-                                  float alpha, float gamma);
+ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm::vec3 wi, glm::vec3 wo, float alpha,
+                                  float gamma);
 
 // Environment lighting by Monte Carlo over the explicit particles (Eq. 10 with Eq. 3-4): particle k in A reflects
 // the environment around i_k = reflect(o, m_k) into the cone around o; over that cone (solid angle sigma(Omega_o))
@@ -33,7 +33,8 @@ float smithG1Beckmann(glm::vec3 w, float alpha);
 // CPU version of the prefilter pass (shaders/glints/wang2020_prefilter.comp) for an environment of constant radiance
 // 1: (L^o, P^) of Eq. 16 (the same K = 64 Hammersley points) and Eq. 17 for a view direction wo in the normal's
 // frame (with constant radiance the table does not depend on the normal).
-glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::vec3 wo);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
+glm::vec2 prefilteredConstantEnvironment(
+    const DpfTable& dpf, float alpha, glm::vec3 wo);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
 
 }  // namespace glimmer::wang2020
 

@@ -24,8 +24,7 @@ std::shared_ptr<const wang2020::DpfSet> dpfSetFor(int scale) {
     auto& slot = sets[scale];
     if (!slot) {
         wang2020::DpfResolution res{90 / scale, 90 / scale, 180 / scale};
-        slot = std::make_shared<wang2020::DpfSet>(
-            wang2020::loadOrGenerateDpfSet(res, wang2020::defaultDpfCacheDir()));
+        slot = std::make_shared<wang2020::DpfSet>(wang2020::loadOrGenerateDpfSet(res, wang2020::defaultDpfCacheDir()));
     }
     return slot;
 }
