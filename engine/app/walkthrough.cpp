@@ -422,6 +422,12 @@ private:
                             " fps)  GPU timers:";
         for (const PassTiming& t : renderer_->passTimings()) first += " " + t.name + " " + formatMs(t.gpuMs);
         first += renderer_->passTimings().empty() ? " (pending)" : " ms";
+        // Passes re-run by the last material edit (e.g. wang2020's quadtree / DPF accumulation / prefilter), wall ms.
+        if (!renderer_->lastEditPasses().empty()) {
+            first += "  | last edit:";
+            for (const PassTiming& t : renderer_->lastEditPasses()) first += " " + t.name + " " + formatMs(t.wallMs);
+            first += " ms";
+        }
         const Camera& c = fly_.camera();
         char where[160];
         std::snprintf(where, sizeof where, "pos %.2f %.2f %.2f  speed %.2g m/s  vsync %s  ibl %s%s%s", c.position.x,
@@ -431,6 +437,7 @@ private:
                       captured_ ? "  mouse captured (C/Esc)" : "");
         std::string second = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe) | " : "";
         second += where;
+
         if (now_ < messageUntil_) {
             // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner.
             float textW = float(ui::textWidth(message_, ui_.scale()));

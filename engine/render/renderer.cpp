@@ -239,9 +239,13 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     // listed in --stats (material editing, Wang et al. 2020 Sec. 4.5).
     if (methodResources_ || iblResources_) {
         environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
+        bool cleared = false;
         auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
-            if (measurePasses)
-                for (const auto& [name, ms] : ran) timings_.push_back({name, ms, 0.0});
+            for (const auto& [name, ms] : ran) {
+                if (measurePasses) timings_.push_back({name, ms, 0.0});
+                if (!cleared) editPasses_.clear(), cleared = true;
+                editPasses_.push_back({name, ms, 0.0});
+            }
         };
         if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
         if (iblResources_ && environment_.enabled()) {

@@ -65,6 +65,9 @@ public:
     void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                 bool measurePasses = false);
     const std::vector<PassTiming>& passTimings() const { return timings_; }
+    // The on-demand passes of the last frame that ran any (method / IBL-mode data rebuilt after an edit, wall ms),
+    // kept until the next edit so the window can show them.
+    const std::vector<PassTiming>& lastEditPasses() const { return editPasses_; }
 
     // Makes Scene::environment the active environment (built on first use, rebuilt when it changes); render()
     // calls it too. `flag` names the spec's origin in error messages.
@@ -97,6 +100,7 @@ private:
     gl::VertexArray emptyVao_;
     std::vector<gl::Query> timerQueries_ = std::vector<gl::Query>(3);  // grows when passes are added
     std::vector<PassTiming> timings_;
+    std::vector<PassTiming> editPasses_;
     std::map<std::string, std::string> shaderErrors_;
     struct TimerFrame {
         std::vector<gl::Query> queries;
