@@ -70,14 +70,22 @@ GlintPixel glintSetup(GlintSurface s) {
     for (int i = 0; i < WANG_MAX_LAMBDAS; ++i) px.lambdas[i] = 1.0;
     float det = s.duvdx.x * s.duvdy.y - s.duvdx.y * s.duvdy.x;
     px.area = abs(det);
-    px.expected = P_PARTICLES * px.area;
+    // Per-material density (material scale x glint mask, clamped to 1): independent thinning of the tree's
+    // particles (particle k kept when its hash channel 5 is below the scale), so N x scale particles per unit UV
+    // square without a per-material tree. Scale 1 keeps every particle (the CPU reference's case).
+    float keep = clamp(s.densityScale, 0.0, 1.0);
+    px.expected = P_PARTICLES * keep * px.area;
     px.scale = px.expected < P_MICRO_MAX ? WANG_SCALE_MICRO
              : (px.expected > P_MACRO_MIN ? WANG_SCALE_MACRO : WANG_SCALE_MESO);
-    if (px.scale == WANG_SCALE_MACRO || px.area < 1e-20 || s.densityScale <= 0.0) return px;
 #ifdef GLIMMER_LIGHTING_PASS
-    // lighting.frag sets up every pixel; the traversal is only worth it on glinty materials.
-    if (u_materials[s.materialId].alphaMetallicNdfGlinty.w < 0.5) return px;
+    // lighting.frag sets up every pixel; glints (and the traversal) only on glinty materials. Scale -1: none.
+    if (u_materials[s.materialId].alphaMetallicNdfGlinty.w < 0.5) {
+        px.scale = -1;
+        px.expected = 0.0;
+        return px;
+    }
 #endif
+    if (px.scale == WANG_SCALE_MACRO || px.area < 1e-20 || s.densityScale <= 0.0) return px;
 
     // Spatial traversal (Sec. 4.3 micro / meso): from the level whose cells are at least the footprint's AABB
     // (at most 2 x 2 of them overlap it), descend into non-empty nodes overlapping the AABB. Meso adds nodes
@@ -111,7 +119,7 @@ GlintPixel glintSetup(GlintSurface s) {
         vec2 qMin = min(min(q0, q1), min(q2, q3)), qMax = max(max(q0, q1), max(q2, q3));
         if (any(greaterThan(qMin, vec2(0.5))) || any(lessThan(qMax, vec2(-0.5)))) continue;
         if (meso && all(lessThanEqual(abs(qMin), vec2(0.5))) && all(lessThanEqual(abs(qMax), vec2(0.5)))) {
-            px.inFootprint += float(count);   // node wholly inside A
+            px.inFootprint += float(count) * keep;   // node wholly inside A (thinning in expectation)
             continue;
         }
         if (node.x == depth) {
@@ -120,6 +128,7 @@ GlintPixel glintSetup(GlintSurface s) {
             for (uint k = 0u; k < count; ++k) {
                 vec2 p = (vec2(node.yz) + vec2(wangHashUnit(leafId, k, 0u), wangHashUnit(leafId, k, 1u))) * leafSize;
                 if (!wangInside(wangLocal(p, s.uv, inverseJ))) continue;
+                if (keep < 1.0 && wangHashUnit(leafId, k, 5u) >= keep) continue;
                 px.inFootprint += 1.0;
                 if (!meso && px.lambdaCount < WANG_MAX_LAMBDAS) px.lambdas[px.lambdaCount++] = wangHashUnit(leafId, k, 2u);
             }
@@ -172,7 +181,8 @@ vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) {
     return vec4(px.expected, float(px.scale), px.inFootprint, float(px.visits));
 }
 
-// --aov extra (and --aov glintscale): the scale as a colour, red micro, green meso, blue macro (Fig. 4a).
+// --aov extra (and --aov glintscale): the scale as a colour, red micro, green meso, blue macro (Fig. 4a); black
+// on materials without glints.
 vec4 glintExtraAOV(GlintPixel px, GlintSurface s) {
     return vec4(px.scale == WANG_SCALE_MICRO ? 1.0 : 0.0, px.scale == WANG_SCALE_MESO ? 1.0 : 0.0,
                 px.scale == WANG_SCALE_MACRO ? 1.0 : 0.0, 1.0);
