@@ -14,6 +14,7 @@
 #include "bench/compare.h"
 #include "bench/temporal.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "glints/methods.h"
 #include "render/offscreen.h"
 #include "support/golden.h"
@@ -108,6 +109,8 @@ TEST(BenchSuite, TinySuiteDerivedFiguresArePositiveAndFinite) {
         EXPECT_GE(d["stability_max_over_min"].get<double>(), 1.0);
         EXPECT_TRUE(positiveFinite(d["anisotropy_plane25_over_plane90"]));
         EXPECT_TRUE(positiveFinite(d["speedup_over_zirr2016"]));
+        EXPECT_TRUE(positiveFinite(d["cpu"]["overhead_vs_smooth"]));
+        EXPECT_TRUE(positiveFinite(d["cpu"]["anisotropy_plane25_over_plane90"]));
     }
     EXPECT_DOUBLE_EQ(derived["smooth"]["overhead_vs_smooth"].get<double>(), 1.0);
     EXPECT_DOUBLE_EQ(derived["zirr2016"]["speedup_over_zirr2016"].get<double>(), 1.0);
@@ -327,4 +330,44 @@ TEST(BenchTemporal, StaticCameraGivesZeroAndDollyIsFinite) {
     EXPECT_GT(moving[0].meanFlicker, 0.0);
     nlohmann::json json = temporalToJson(options, moving);
     EXPECT_EQ(json["results"][0]["flicker_per_pair"].size(), 1u);
+}
+
+// `glimmer view --split`: left of the divider the left method's image, right of it the split method's, a 2-pixel
+// white divider between (under xvfb-run; the window's --hide-ui screenshot equals `glimmer render`).
+TEST(BenchSplitView, WindowShowsBothMethodsAroundTheDivider) {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed";
+    std::filesystem::path dir = test::testOutputDir() / "bench";
+    std::filesystem::create_directories(dir);
+    const std::string view = (dir / "split_view.png").string(), left = (dir / "split_smooth.png").string(),
+                      right = (dir / "split_zirr2016.png").string();
+    std::string command = std::string("xvfb-run -a -s \"-screen 0 1280x720x24\" ") + GLIMMER_EXECUTABLE +
+                          " view --scene plane25 --size 128x96 --frames 2 --hide-ui --split zirr2016 --split-at 0.5"
+                          " --screenshot " + view + " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    for (const auto& [method, out] : {std::pair{"smooth", left}, std::pair{"zirr2016", right}}) {
+        auto run = test::runGlimmer({"render", "--scene", "plane25", "--size", "128x96", "--method", method, "--out", out});
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+    }
+    ImageF split = readImage(view), a = readImage(left), b = readImage(right);
+    ASSERT_EQ(split.width, 128);
+    ASSERT_EQ(split.height, 96);
+    int leftDiffer = 0, rightDiffer = 0, methodsDiffer = 0, dividerNotWhite = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 128; ++x)
+            for (int c = 0; c < 3; ++c) {
+                float v = split.at(x, y, c);
+                if (x == 63 || x == 64) dividerNotWhite += v < 0.99f;
+                else if (x < 63) leftDiffer += std::abs(v - a.at(x, y, c)) > 1.5f / 255.0f;
+                else {
+                    rightDiffer += std::abs(v - b.at(x, y, c)) > 1.5f / 255.0f;
+                    methodsDiffer += std::abs(a.at(x, y, c) - b.at(x, y, c)) > 1.5f / 255.0f;
+                }
+            }
+    EXPECT_EQ(dividerNotWhite, 0);
+    EXPECT_EQ(leftDiffer, 0);
+    EXPECT_EQ(rightDiffer, 0);
+    EXPECT_GT(methodsDiffer, 20);  // the right half really shows another method
+    auto bad = test::runGlimmer({"view", "--split", "nope", "--frames", "1"});
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("nope"), std::string::npos) << bad.err;
 }

@@ -1,6 +1,7 @@
 // glimmer view: the walkthrough window (engine/app/walkthrough.cpp). `--frames N --screenshot FILE` renders N
 // frames and exits (tests run it under xvfb-run); with --hide-ui that image equals `glimmer render`.
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/commands.h"
 #include "app/common_options.h"
@@ -8,15 +9,17 @@
 #include "core/cli.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "glints/methods.h"
 
 namespace glimmer {
 
 static const char* kViewHelp =
     "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
-    "                    [--aov NAME] [--shader-dir DIR] [--no-vsync] [--hide-ui]\n"
+    "                    [--aov NAME] [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
     "  WASD move, Q/E down/up, Shift faster, wheel speed, right mouse button (or C) looks around,\n"
     "  1-9 scene cameras, P walkthrough, M/N cycle method/debug view, V vsync, H hide UI,\n"
+    "  B split-screen comparison (Shift+B: next right-hand method; drag the divider with the left button),\n"
     "  arrows + Enter drive the panel, F5 reload shaders, F12 screenshot (Shift+F12: EXR), Esc quit.\n";
 
 int runViewCommand(const std::vector<std::string>& argList) {
@@ -32,6 +35,14 @@ int runViewCommand(const std::vector<std::string>& argList) {
     options.screenshot = args.value("--screenshot");
     options.hideUi = args.flag("--hide-ui");
     options.vsync = !args.flag("--no-vsync");
+    if (auto split = args.value("--split")) options.splitMethod = findGlintMethod(*split).id;
+    if (auto at = args.value("--split-at")) {
+        char* end = nullptr;
+        options.splitPosition = std::strtof(at->c_str(), &end);
+        if (at->empty() || *end != '\0' || !(options.splitPosition >= 0.0f && options.splitPosition <= 1.0f))
+            throw UsageError("--split-at: '" + *at + "' is not a number in [0, 1]");
+        if (!options.splitMethod) throw UsageError("--split-at: only with --split METHOD");
+    }
     args.finish();
     if (options.screenshot) imageFormatForPath(*options.screenshot, "--screenshot");
     if (options.screenshot && options.frameLimit == 0)

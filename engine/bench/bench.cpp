@@ -133,7 +133,7 @@ BenchReport runBench(const BenchOptions& options) {
             request.frames = options.warmup;
             session->render(request);
         }
-        BenchResult result{c, {}, 0, 0, 0, 0, 0};
+        BenchResult result{c, {}, 0, 0, 0, 0, 0, 0};
         request.frames = 1;
         for (int f = 0; f < options.frames; ++f) {
             RenderResult frame = session->render(request);
@@ -188,35 +188,35 @@ static nlohmann::json geometricMean(const std::vector<double>& values) {
     return std::exp(logSum / double(values.size()));
 }
 
-void deriveFigures(BenchReport& report) {
-    for (BenchResult& r : report.results) {
-        const BenchResult* smooth = findResult(report, "smooth", r.benchCase.scene, r.benchCase);
-        r.ratioToSmooth = smooth && smooth->medianMs > 0.0 ? r.medianMs / smooth->medianMs : 0.0;
-    }
+// The figures of every method for one timing metric (wall or CPU median).
+static nlohmann::json figuresFor(const BenchReport& report, double BenchResult::*metric) {
     std::vector<std::string> methods;
     for (const BenchResult& r : report.results)
         if (std::find(methods.begin(), methods.end(), r.benchCase.method) == methods.end())
             methods.push_back(r.benchCase.method);
-
-    report.derived = nlohmann::json::object();
+    nlohmann::json figures = nlohmann::json::object();
     for (const std::string& method : methods) {
         std::vector<double> overhead, anisotropy, speedup;
         std::map<std::string, std::pair<double, double>> sweepRange;  // scene|variant -> (min, max) of medians
         std::map<std::string, int> sweepCount;
         for (const BenchResult& r : report.results) {
             if (r.benchCase.method != method) continue;
-            if (r.ratioToSmooth > 0.0) overhead.push_back(r.ratioToSmooth);
+            double value = r.*metric;
+            if (const BenchResult* smooth = findResult(report, "smooth", r.benchCase.scene, r.benchCase);
+                smooth && smooth->*metric > 0.0 && value > 0.0)
+                overhead.push_back(value / smooth->*metric);
             std::string group = r.benchCase.scene + "|" + r.benchCase.variant;
-            auto [it, inserted] = sweepRange.try_emplace(group, r.medianMs, r.medianMs);
-            it->second.first = std::min(it->second.first, r.medianMs);
-            it->second.second = std::max(it->second.second, r.medianMs);
+            auto [it, inserted] = sweepRange.try_emplace(group, value, value);
+            it->second.first = std::min(it->second.first, value);
+            it->second.second = std::max(it->second.second, value);
             sweepCount[group]++;
             if (r.benchCase.scene == "plane25")
-                if (const BenchResult* p90 = findResult(report, method, "plane90", r.benchCase); p90 && p90->medianMs > 0)
-                    anisotropy.push_back(r.medianMs / p90->medianMs);
+                if (const BenchResult* p90 = findResult(report, method, "plane90", r.benchCase);
+                    p90 && p90->*metric > 0 && value > 0)
+                    anisotropy.push_back(value / p90->*metric);
             if (const BenchResult* z = findResult(report, "zirr2016", r.benchCase.scene, r.benchCase);
-                z && r.medianMs > 0)
-                speedup.push_back(z->medianMs / r.medianMs);
+                z && value > 0 && z->*metric > 0)
+                speedup.push_back(z->*metric / value);
         }
         nlohmann::json stabilityPerGroup = nlohmann::json::object();
         double worst = 0.0;
@@ -226,7 +226,7 @@ void deriveFigures(BenchReport& report) {
             stabilityPerGroup[group] = s;
             worst = std::max(worst, s);
         }
-        report.derived[method] = {
+        figures[method] = {
             {"overhead_vs_smooth", geometricMean(overhead)},
             {"stability_max_over_min", stabilityPerGroup.empty() ? nlohmann::json(nullptr) : nlohmann::json(worst)},
             {"stability_per_scene", stabilityPerGroup},
@@ -234,11 +234,26 @@ void deriveFigures(BenchReport& report) {
             {"speedup_over_zirr2016", geometricMean(speedup)},
         };
     }
+    return figures;
+}
+
+void deriveFigures(BenchReport& report) {
+    for (BenchResult& r : report.results) {
+        const BenchResult* smooth = findResult(report, "smooth", r.benchCase.scene, r.benchCase);
+        r.ratioToSmooth = smooth && smooth->medianMs > 0.0 ? r.medianMs / smooth->medianMs : 0.0;
+        r.cpuRatioToSmooth = smooth && smooth->cpuMedianMs > 0.0 ? r.cpuMedianMs / smooth->cpuMedianMs : 0.0;
+    }
+    // Wall-clock figures at the top level; the same from process CPU time under "cpu" (steadier on a shared
+    // machine with a software renderer).
+    report.derived = figuresFor(report, &BenchResult::medianMs);
+    nlohmann::json cpu = figuresFor(report, &BenchResult::cpuMedianMs);
+    for (auto& [method, figures] : report.derived.items()) figures["cpu"] = cpu[method];
     report.derived["_definitions"] = {
         {"overhead_vs_smooth", "geometric mean over cases of median / smooth's median at the same point"},
         {"stability_max_over_min", "largest over scenes of max / min of the median over the density sweep"},
         {"anisotropy_plane25_over_plane90", "geometric mean of plane25 median / plane90 median at the same point"},
         {"speedup_over_zirr2016", "geometric mean of zirr2016's median / this method's median at the same point"},
+        {"cpu", "the same figures from the median process CPU time per frame (all threads) instead of wall time"},
     };
 }
 
@@ -259,6 +274,7 @@ nlohmann::json toJson(const BenchReport& report) {
                            {"min_ms", r.minMs},
                            {"max_ms", r.maxMs},
                            {"cpu_median_ms", r.cpuMedianMs},
+                           {"cpu_ratio_to_smooth", r.cpuRatioToSmooth > 0.0 ? nlohmann::json(r.cpuRatioToSmooth) : nlohmann::json()},
                            {"ratio_to_smooth", r.ratioToSmooth > 0.0 ? nlohmann::json(r.ratioToSmooth) : nlohmann::json()},
                            {"samples", samples}});
     }
@@ -329,44 +345,58 @@ std::string toMarkdown(const BenchReport& report) {
         << " timed frames after " << meta.value("warmup", 0) << " warm-up, renderer `" << meta.value("gl_renderer", "?")
         << "`. Median wall ms per frame (glFinish) and ratio to smooth in the same run"
         << (swept ? "; min-max over the density sweep" : "") << ".\n\n";
-    out << "| method |";
-    for (const std::string& col : columns) {
-        const auto& [scene, variant] = columnParts[col];
-        out << ' ' << scene << (variant.empty() ? "" : " " + variant) << " |";
-    }
-    out << "\n|---|";
-    for (size_t i = 0; i < columns.size(); ++i) out << "---|";
-    out << '\n';
-    for (const std::string& method : methods) {
-        out << "| " << method << " |";
+    auto timeTable = [&](double BenchResult::*metric, double BenchResult::*ratio) {
+        out << "| method |";
         for (const std::string& col : columns) {
-            double lo = 1e300, hi = 0, rlo = 1e300, rhi = 0;
-            bool any = false;
-            for (const BenchResult& r : report.results) {
-                if (r.benchCase.method != method || r.benchCase.scene + "|" + r.benchCase.variant != col) continue;
-                any = true;
-                lo = std::min(lo, r.medianMs);
-                hi = std::max(hi, r.medianMs);
-                rlo = std::min(rlo, r.ratioToSmooth);
-                rhi = std::max(rhi, r.ratioToSmooth);
-            }
-            if (!any) out << " - |";
-            else if (swept)
-                out << ' ' << fixed(lo, 1) << "-" << fixed(hi, 1) << " (" << fixed(rlo, 2) << "-" << fixed(rhi, 2)
-                    << "x) |";
-            else
-                out << ' ' << fixed(lo, 1) << " (" << fixed(rlo, 2) << "x) |";
+            const auto& [scene, variant] = columnParts[col];
+            out << ' ' << scene << (variant.empty() ? "" : " " + variant) << " |";
         }
+        out << "\n|---|";
+        for (size_t i = 0; i < columns.size(); ++i) out << "---|";
         out << '\n';
-    }
-    out << "\n| method | overhead vs smooth | stability (max/min over sweep) | plane25 / plane90 | speed-up over "
-           "zirr2016 |\n|---|---|---|---|---|\n";
-    for (const std::string& method : methods) {
-        const nlohmann::json& d = report.derived[method];
-        out << "| " << method << " | " << figure(d["overhead_vs_smooth"], "x") << " | "
-            << figure(d["stability_max_over_min"], "") << " | " << figure(d["anisotropy_plane25_over_plane90"], "")
-            << " | " << figure(d["speedup_over_zirr2016"], "x") << " |\n";
-    }
+        for (const std::string& method : methods) {
+            out << "| " << method << " |";
+            for (const std::string& col : columns) {
+                double lo = 1e300, hi = 0, rlo = 1e300, rhi = 0;
+                bool any = false;
+                for (const BenchResult& r : report.results) {
+                    if (r.benchCase.method != method || r.benchCase.scene + "|" + r.benchCase.variant != col) continue;
+                    any = true;
+                    lo = std::min(lo, r.*metric);
+                    hi = std::max(hi, r.*metric);
+                    rlo = std::min(rlo, r.*ratio);
+                    rhi = std::max(rhi, r.*ratio);
+                }
+                if (!any) out << " - |";
+                else if (swept)
+                    out << ' ' << fixed(lo, 1) << "-" << fixed(hi, 1) << " (" << fixed(rlo, 2) << "-" << fixed(rhi, 2)
+                        << "x) |";
+                else
+                    out << ' ' << fixed(lo, 1) << " (" << fixed(rlo, 2) << "x) |";
+            }
+            out << '\n';
+        }
+    };
+    auto figureTable = [&](bool cpu) {
+        out << "| method | overhead vs smooth | stability (max/min over sweep) | plane25 / plane90 | speed-up over "
+               "zirr2016 |\n|---|---|---|---|---|\n";
+        for (const std::string& method : methods) {
+            nlohmann::json d = report.derived.contains(method) ? report.derived[method] : nlohmann::json::object();
+            if (cpu) d = d.contains("cpu") ? d["cpu"] : nlohmann::json::object();
+            out << "| " << method << " | " << figure(d.value("overhead_vs_smooth", nlohmann::json()), "x") << " | "
+                << figure(d.value("stability_max_over_min", nlohmann::json()), "") << " | "
+                << figure(d.value("anisotropy_plane25_over_plane90", nlohmann::json()), "") << " | "
+                << figure(d.value("speedup_over_zirr2016", nlohmann::json()), "x") << " |\n";
+        }
+    };
+    timeTable(&BenchResult::medianMs, &BenchResult::ratioToSmooth);
+    out << "\nDerived figures (wall clock):\n\n";
+    figureTable(false);
+    out << "\nProcess CPU time per frame (all threads; steadier than wall time when other work shares the machine), "
+           "ms and ratio to smooth:\n\n";
+    timeTable(&BenchResult::cpuMedianMs, &BenchResult::cpuRatioToSmooth);
+    out << "\nDerived figures (CPU time):\n\n";
+    figureTable(true);
     return out.str();
 }
 

@@ -66,6 +66,7 @@ struct BenchResult {
     std::vector<BenchSample> samples;
     double medianMs = 0.0, minMs = 0.0, maxMs = 0.0, cpuMedianMs = 0.0;
     double ratioToSmooth = 0.0;              // median / smooth's median in the same scene, variant and sweep point
+    double cpuRatioToSmooth = 0.0;           // the same from the CPU-time medians
 };
 
 struct BenchReport {
