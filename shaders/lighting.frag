@@ -7,6 +7,7 @@
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
 #include GLINT_METHOD_FILE
+#include IBL_MODE_FILE
 
 layout(binding = 0) uniform sampler2D g_uvDuvdx;
 layout(binding = 1) uniform sampler2D g_duvdyMaterial;
@@ -89,9 +90,11 @@ void main() {
     // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7).
     GlintPixel glint = glintSetup(s);
 
-    // Image-based lighting (common/ibl.glsl), or the constant ambient when the environment is off (--env none).
-    vec3 radiance = envEnabled() ? envLighting(s.n, toEye, diffuseAlbedo, f0, s.alpha, s.ndf)
-                                 : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
+    // Environment lighting by the selected IBL mode (shaders/ibl/README.md), or the constant ambient when the
+    // environment is off (--env none).
+    vec3 radiance = envEnabled()
+        ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
     float firstLightD = 0.0;
     int lightCount = int(u_exposure.y);
     for (int i = 0; i < lightCount; ++i) {

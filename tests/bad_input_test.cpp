@@ -56,6 +56,8 @@ TEST(BadInput, EachGivesAOneLineErrorAndANonZeroExit) {
         {"unknown scene name", {"render", "--scene", "atlantis", "--out", out}, "atlantis"},
         {"unknown method", {"render", "--method", "sparklez", "--out", out}, "sparklez"},
         {"unknown --set key", {"render", "--set", "shininess=3", "--out", out}, "shininess"},
+        {"unknown IBL mode", {"render", "--ibl", "raytraced", "--out", out}, "raytraced"},
+        {"unknown IBL parameter", {"render", "--set", "ibl.samples=3", "--out", out}, "ibl.samples"},
         {"--set out of range", {"render", "--set", "material.alpha=7", "--out", out}, "material.alpha"},
         {"--set not a number", {"render", "--set", "exposure=bright", "--out", out}, "exposure"},
         {"bad --size (zero)", {"render", "--size", "0x256", "--out", out}, "--size"},

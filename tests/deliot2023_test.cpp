@@ -355,6 +355,7 @@ RenderResult renderWith(const std::string& scene, const std::string& method, con
                         const std::string& aov = "final", int size = 256) {
     RenderRequest request;
     request.scene = scene;
+    request.environment = "none";   // glints respond to the lights; the environment would add a smooth term only
     request.width = request.height = size;
     request.settings.method = method;
     for (const std::string& s : sets) request.settings.apply(s);

@@ -33,6 +33,7 @@ namespace {
 class GlintRig {
 public:
     explicit GlintRig(const std::string& sceneName) : base_(makeBuiltinScene(sceneName)) {
+        base_.environment = "none";   // glints respond to the lights; environment lighting would only add a smooth term
         context_ = createHeadlessContext(Backend::Egl);
         scene_ = base_;
         gpuScene_ = std::make_unique<GpuScene>(scene_);

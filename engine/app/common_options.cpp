@@ -6,6 +6,7 @@
 #include "glints/methods.h"
 #include "render/aov.h"
 #include "render/environment.h"
+#include "render/ibl_modes.h"
 #include "scene/builtin_scenes.h"
 
 namespace glimmer {
@@ -17,6 +18,8 @@ RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaul
     request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));
     request.settings.method = args.valueOr("--method", "smooth");
     findGlintMethod(request.settings.method);
+    request.settings.ibl = args.valueOr("--ibl", "prefiltered");
+    checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);
     for (const std::string& assignment : args.values("--set")) request.settings.apply(assignment);
     if (auto aov = args.value("--aov")) request.settings.debugView = findAov(*aov).viewId;
     if (auto dir = args.value("--shader-dir")) {

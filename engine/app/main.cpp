@@ -1,6 +1,8 @@
 // glimmer: a deferred OpenGL 4.5 engine for real-time glints. Subcommands: render, view, bench.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -29,10 +31,20 @@ int main(int argc, char** argv) {
         if (command == "view") return glimmer::runViewCommand(args);
         if (command == "bench") return glimmer::runBenchCommand(args);
         if (command == "main") {
-            if (glimmer::GlfwWindow::displayAvailable()) return glimmer::runViewCommand(args);
-            std::vector<std::string> renderArgs = {"--out", "glimmer-default.png"};
-            renderArgs.insert(renderArgs.end(), args.begin(), args.end());
-            return glimmer::runRenderCommand(renderArgs);
+            // The default experience: the atrium with Deliot & Belcour glints (options given override these).
+            auto given = [&](const char* flag) { return std::find(args.begin(), args.end(), flag) != args.end(); };
+            std::vector<std::string> defaults;
+            if (!given("--scene")) defaults.insert(defaults.end(), {"--scene", "atrium"});
+            if (!given("--method")) defaults.insert(defaults.end(), {"--method", "deliot2023"});
+            if (glimmer::GlfwWindow::displayAvailable()) {
+                defaults.insert(defaults.end(), args.begin(), args.end());
+                return glimmer::runViewCommand(defaults);
+            }
+            if (!given("--camera")) defaults.insert(defaults.end(), {"--camera", "court"});
+            if (!given("--size")) defaults.insert(defaults.end(), {"--size", "1280x720"});
+            if (!given("--out")) defaults.insert(defaults.end(), {"--out", std::filesystem::absolute("glimmer-default.png").string()});
+            defaults.insert(defaults.end(), args.begin(), args.end());
+            return glimmer::runRenderCommand(defaults);
         }
         std::fprintf(stderr, "glimmer: unknown command '%s'\n%s", command.c_str(), kUsage);
         return 2;

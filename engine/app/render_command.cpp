@@ -19,11 +19,14 @@ namespace glimmer {
 
 static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
-    "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none] [--spp N] [--aov NAME]\n"
-    "                      [--frames N] [--shader-dir DIR] [--stats] --out FILE.png|FILE.exr\n"
+    "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
+    "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
+    "                      --out FILE.png|FILE.exr\n"
     "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
+    "  --env: environment map (default: the scene's, else the procedural sky). --ibl: how it is integrated\n"
+    "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n"
     "  --compare renders smooth and each listed method side by side, labelled; each --crop (render pixels, top-left\n"
     "  origin) adds a nearest-neighbour zoomed inset below every tile.\n";
 

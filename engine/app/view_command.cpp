@@ -15,11 +15,13 @@ namespace glimmer {
 
 static const char* kViewHelp =
     "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
-    "                    [--aov NAME] [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
+    "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--aov NAME]\n"
+    "                    [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
     "  WASD move, Q/E down/up, Shift faster, wheel speed, right mouse button (or C) looks around,\n"
-    "  1-9 scene cameras, P walkthrough, M/N cycle method/debug view, V vsync, H hide UI,\n"
+    "  1-9 scene cameras, P walkthrough, M/N/I cycle method/debug view/IBL mode, V vsync, H hide UI,\n"
     "  B split-screen comparison (Shift+B: next right-hand method; drag the divider with the left button),\n"
+    "  Monte Carlo IBL modes accumulate samples while the camera is still.\n"
     "  arrows + Enter drive the panel, F5 reload shaders, F12 screenshot (Shift+F12: EXR), Esc quit.\n";
 
 int runViewCommand(const std::vector<std::string>& argList) {

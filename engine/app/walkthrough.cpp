@@ -91,6 +91,7 @@ public:
           window_(options.request.width, options.request.height, "Glimmer - " + baseScene_.name,
                   options.frameLimit == 0) {
         const Camera& start = baseScene_.camera(options.request.camera);
+        if (options.request.environment) baseScene_.environment = *options.request.environment;
         scene_ = baseScene_;
         applySceneOverrides(options.request.settings, scene_);
         gpuScene_ = std::make_unique<GpuScene>(scene_);
@@ -177,6 +178,7 @@ private:
         Stopwatch clock;
         std::vector<std::string> rebuilt = renderer_->reloadChangedPrograms(files);
         if (splitRenderer_) splitRenderer_->reloadChangedPrograms(files);
+        ++settingsVersion_;   // a rebuilt shader starts a new accumulation
         try {
             if (uiRenderer_->reloadIfChanged(files)) rebuilt.push_back("ui");
             uiError_.clear();
@@ -231,6 +233,7 @@ private:
                 else split_ = !split_;
                 if (split_) showMessage("split: " + renderer_->settings().method + " | " + splitMethodId());
                 break;
+            case GLFW_KEY_I: cycleIblMode(shift ? -1 : 1); break;
             default:
                 if (key.key >= GLFW_KEY_1 && key.key <= GLFW_KEY_9) jumpToCamera(key.key - GLFW_KEY_1);
                 break;
@@ -360,6 +363,17 @@ private:
         split_ = true;
     }
 
+    void cycleIblMode(int step) {
+        const auto& modes = iblModes();
+        int n = int(modes.size()), current = 0;
+        for (int i = 0; i < n; ++i)
+            if (modes[size_t(i)].id == renderer_->settings().ibl) current = i;
+        RenderSettings next = renderer_->settings();
+        next.ibl = modes[size_t(((current + step) % n + n) % n)].id;
+        applySettings(next);
+        showMessage("ibl " + next.ibl + (renderer_->settings().ibl == next.ibl ? "" : ": " + methodError_));
+    }
+
     void cycleDebugView(int step) {
         const auto& views = aovTable();
         int n = int(views.size()), current = 0;
@@ -374,6 +388,7 @@ private:
 
     // Live edits: renderer settings (method, parameters, view) and the scene's material/light overrides.
     void applySettings(const RenderSettings& next) {
+        ++settingsVersion_;
         bool commonChanged = next.common != renderer_->settings().common;
         try {
             renderer_->setSettings(next);
@@ -460,8 +475,10 @@ private:
         first += renderer_->passTimings().empty() ? " (pending)" : " ms";
         const Camera& c = fly_.camera();
         char where[160];
-        std::snprintf(where, sizeof where, "pos %.2f %.2f %.2f  speed %.2g m/s  vsync %s%s", c.position.x, c.position.y,
-                      c.position.z, double(controls_.moveSpeed), controls_.vsync ? "on" : "off",
+        std::snprintf(where, sizeof where, "pos %.2f %.2f %.2f  speed %.2g m/s  vsync %s  ibl %s%s%s", c.position.x,
+                      c.position.y, c.position.z, double(controls_.moveSpeed), controls_.vsync ? "on" : "off",
+                      renderer_->settings().ibl.c_str(),
+                      renderer_->accumulating() ? (" " + std::to_string(sampleIndex_ + 1) + " spp").c_str() : "",
                       captured_ ? "  mouse captured (C/Esc)" : "");
         std::string second = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe) | " : "";
         second += where;
@@ -477,7 +494,22 @@ private:
     }
 
     // ---- frame ----
+    // Monte Carlo IBL modes average their estimates while camera, size, scene and settings stay as they were;
+    // any change starts a new mean.
+    void updateAccumulation(int width, int height) {
+        glm::mat4 view = fly_.camera().view();
+        bool still = view == accumulatedView_ && width == accumulatedWidth_ && height == accumulatedHeight_ &&
+                     accumulatedSettingsVersion_ == settingsVersion_;
+        sampleIndex_ = still && renderer_->accumulating() ? sampleIndex_ + 1 : 0;
+        accumulatedView_ = view;
+        accumulatedWidth_ = width;
+        accumulatedHeight_ = height;
+        accumulatedSettingsVersion_ = settingsVersion_;
+        renderer_->setSampleIndex(sampleIndex_);
+    }
+
     void drawFrame(int width, int height) {
+        updateAccumulation(width, height);
         renderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
         present_.resize(width, height);
         glBlitNamedFramebuffer(renderer_->targets().displayFramebuffer(), present_.framebuffer(), 0, 0, width, height,
@@ -510,6 +542,7 @@ private:
             split_ = false;
             return;
         }
+        splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
         splitRenderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
         int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
         if (x < width)
@@ -557,6 +590,11 @@ private:
     ui::Context ui_;
     ui::WindowControls controls_;
     ui::FlyCamera fly_;
+    // Accumulation of Monte Carlo IBL modes (updateAccumulation).
+    uint32_t sampleIndex_ = 0;
+    uint64_t settingsVersion_ = 0, accumulatedSettingsVersion_ = ~uint64_t(0);
+    glm::mat4 accumulatedView_{0.0f};
+    int accumulatedWidth_ = 0, accumulatedHeight_ = 0;
     std::unique_ptr<ui::CameraPath> path_;
     float walkthroughTime_ = 0.0f;
     bool uiHidden_ = false, captured_ = false, rightLook_ = false, lookStarted_ = false, softwareRenderer_ = false;

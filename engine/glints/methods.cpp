@@ -86,23 +86,32 @@ const GlintMethod& findGlintMethod(const std::string& id) {
     throw UsageError("--method: unknown method '" + id + "' (known: " + known + ")");
 }
 
-std::string methodParamsGlsl(const GlintMethod& method) {
-    std::string glsl = "layout(std140, binding = 3) uniform MethodParamBlock { vec4 u_methodParams[" +
-                       std::to_string(kMaxMethodParams / 4) + "]; };\n";
+std::string parameterBlockGlsl(const std::vector<ParamSpec>& params, unsigned binding, const std::string& blockName,
+                              const std::string& arrayName, const std::string& macroPrefix, int capacity) {
+    if (int(params.size()) > capacity) throw Error("internal: " + blockName + " holds at most " + std::to_string(capacity) + " parameters");
+    std::string glsl = "layout(std140, binding = " + std::to_string(binding) + ") uniform " + blockName + " { vec4 " +
+                       arrayName + "[" + std::to_string(capacity / 4) + "]; };\n";
     static const char* lanes = "xyzw";
-    for (size_t i = 0; i < method.params.size(); ++i) {
-        std::string upper = method.params[i].name;
+    for (size_t i = 0; i < params.size(); ++i) {
+        std::string upper = params[i].name;
         std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
-        glsl += "#define P_" + upper + " u_methodParams[" + std::to_string(i / 4) + "]." + lanes[i % 4] + "\n";
+        glsl += "#define " + macroPrefix + upper + " " + arrayName + "[" + std::to_string(i / 4) + "]." + lanes[i % 4] + "\n";
     }
     return glsl;
 }
 
-std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values) {
-    std::vector<float> packed(kMaxMethodParams, 0.0f);
-    for (size_t i = 0; i < method.params.size() && i < packed.size(); ++i)
-        packed[i] = paramOr(values, method.params[i]);
+std::vector<float> packParameters(const std::vector<ParamSpec>& params, const ParamValues& values, int capacity) {
+    std::vector<float> packed(size_t(capacity), 0.0f);
+    for (size_t i = 0; i < params.size() && i < packed.size(); ++i) packed[i] = paramOr(values, params[i]);
     return packed;
+}
+
+std::string methodParamsGlsl(const GlintMethod& method) {
+    return parameterBlockGlsl(method.params, 3, "MethodParamBlock", "u_methodParams", "P_", kMaxMethodParams);
+}
+
+std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values) {
+    return packParameters(method.params, values, kMaxMethodParams);
 }
 
 }  // namespace glimmer

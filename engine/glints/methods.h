@@ -43,4 +43,10 @@ std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues
 
 constexpr int kMaxMethodParams = 64;
 
+// Shared by the method and IBL-mode tables: a std140 block `blockName { vec4 arrayName[capacity / 4]; }` at
+// `binding` with one `<macroPrefix><NAME>` macro per parameter, and the matching packing.
+std::string parameterBlockGlsl(const std::vector<ParamSpec>& params, unsigned binding, const std::string& blockName,
+                               const std::string& arrayName, const std::string& macroPrefix, int capacity);
+std::vector<float> packParameters(const std::vector<ParamSpec>& params, const ParamValues& values, int capacity);
+
 }  // namespace glimmer

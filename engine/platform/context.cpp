@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "platform/driver_pinning.h"
 
 namespace glimmer {
 
@@ -39,6 +40,7 @@ void loadGLFunctions(void* (*getProcAddress)(const char*), const char* backendLa
 }
 
 std::unique_ptr<GLContext> createHeadlessContext(Backend preferred) {
+    pinGlDriversUnderSanitizers();
     if (preferred == Backend::OSMesa) return createOSMesaContext();
     try {
         return createEglContext();

@@ -1,4 +1,5 @@
 #include "platform/glfw_window.h"
+#include "platform/driver_pinning.h"
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
@@ -31,6 +32,7 @@ bool GlfwWindow::displayAvailable() {
 }
 
 GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool visible) {
+    pinGlDriversUnderSanitizers();
     initGlfwOnce();
     glfwDefaultWindowHints();
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);

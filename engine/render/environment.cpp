@@ -339,6 +339,7 @@ void Environment::bind(float intensity, float rotationDegrees) {
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindTextureUnit(kEnvironmentSpecularUnit, enabled_ ? specular_.id() : 0);
     glBindTextureUnit(kEnvironmentBrdfLutUnit, enabled_ ? brdfLut_.id() : 0);
+    glBindTextureUnit(kEnvironmentSourceUnit, enabled_ ? sourceCube_.id() : 0);
 }
 
 nlohmann::json Environment::stats() const {

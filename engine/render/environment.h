@@ -58,6 +58,7 @@ static_assert(sizeof(EnvironmentUniforms) == 11 * 16);
 constexpr unsigned kEnvironmentBinding = 7;      // uniform block binding
 constexpr unsigned kEnvironmentSpecularUnit = 6; // samplerCubeArray: layer 0 GGX, layer 1 Beckmann
 constexpr unsigned kEnvironmentBrdfLutUnit = 7;  // sampler2D: rg GGX (A, B), ba Beckmann (A, B)
+constexpr unsigned kEnvironmentSourceUnit = 24;  // samplerCube: unfiltered map with box mips (IBL modes)
 
 class Environment {
 public:

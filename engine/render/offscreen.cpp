@@ -49,7 +49,8 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     applyEnvironment(request);
     const Camera& camera = request.cameraOverride ? *request.cameraOverride : scene_.camera(request.camera);
 
-    Stopwatch total;
+    // Monte Carlo IBL modes: each frame is the mean of `spp` estimates (sample 0 renders the G-buffer).
+    const int samples = renderer_->accumulating() ? request.spp : 1;
     std::vector<double> frameMs, frameCpuMs;
     // Process CPU time (every thread, llvmpipe's rasterizer workers included): on a software renderer sharing
     // the machine with other work it is far steadier than the wall clock.
@@ -61,7 +62,12 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
         Stopwatch clock;
         double cpuStart = processCpuMs();
-        renderer_->render(scene_, *gpuScene_, camera, request.width, request.height, true);
+        for (int sample = 0; sample < samples; ++sample) {
+            renderer_->setSampleIndex(uint32_t(sample));
+            renderer_->render(scene_, *gpuScene_, camera, request.width, request.height, sample + 1 == samples);
+            if (samples >= 64 && (sample + 1) % (samples / 8) == 0)
+                log::info("render: ", sample + 1, " / ", samples, " samples");
+        }
         glFinish();
         frameMs.push_back(clock.elapsedMs());
         frameCpuMs.push_back(processCpuMs() - cpuStart);
@@ -91,6 +97,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"scene", scene_.name},
         {"camera", camera.name},
         {"method", request.settings.method},
+        {"ibl", {{"mode", request.settings.ibl}, {"spp", samples}}},
         {"aov", aovName},
         {"passes", passes},
         {"frame_ms", frameMs.back()},

@@ -16,6 +16,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     gl::enableDebugOutput();
     frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
+    iblParams_ = gl::createBuffer(kMaxIblParams * sizeof(float), nullptr);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
@@ -29,12 +30,15 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
 
 gl::ProgramDesc Renderer::lightingDesc() const {
     const GlintMethod& method = findGlintMethod(settings_.method);
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    checkIblModeMethod(ibl, method.id);
     gl::ProgramDesc desc;
-    desc.name = "lighting/" + method.id;
+    desc.name = "lighting/" + method.id + (ibl.id == "prefiltered" ? "" : "/" + ibl.id);
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
-    desc.defines = {method.define};
-    desc.preamble = methodParamsGlsl(method);
+    desc.defines = {method.define, ibl.define};
+    desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
+    desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
     return desc;
 }
 
@@ -52,6 +56,8 @@ void Renderer::buildPrograms() {
 void Renderer::createMethodResources() {
     const GlintMethod& method = findGlintMethod(settings_.method);
     methodResources_ = method.createResources ? method.createResources() : nullptr;
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    iblResources_ = ibl.createResources ? ibl.createResources() : nullptr;
 }
 
 void Renderer::reloadPrograms() {
@@ -92,7 +98,7 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    bool methodChanged = settings.method != settings_.method;
+    bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
     RenderSettings previous = settings_;
     settings_ = settings;
     if (methodChanged) {
@@ -154,11 +160,18 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     frame.viewport = {width, height, int(frameIndex_), settings_.debugView};
     frame.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
                       settings_.common_("ambient"), 0.0f};
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
+    const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
+    frame.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(frame), &frame);
     std::vector<float> params = packMethodParams(findGlintMethod(settings_.method), settings_.methodValues(settings_.method));
     glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodParams_.id());
+    std::vector<float> iblParams = packIblParams(ibl, settings_.iblModeValues(ibl.id));
+    glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblParams_.id());
 
     Stopwatch clock;
     int queryIndex = 0;
@@ -204,32 +217,42 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 
     // G-buffer: reversed-Z (clear 0, GREATER passes), no blending, no culling (glTF double-sided surfaces).
-    beginPass("gbuffer");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    const float zero[4] = {0, 0, 0, 0};
-    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
-    float clearDepth = 0.0f;
-    glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
-    gbufferProgram_.use();
-    gpuScene.drawInstances(scene);
-    endPass("gbuffer");
+    if (!blendSample) {
+        beginPass("gbuffer");
+        glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
+        float clearDepth = 0.0f;
+        glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
+        gbufferProgram_.use();
+        gpuScene.drawInstances(scene);
+        endPass("gbuffer");
+    }
 
     beginPass("lighting");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
+    if (blendSample) {
+        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1).
+        glEnable(GL_BLEND);
+        glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(sampleIndex_ + 1));
+        glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+    }
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
+    if (iblResources_) iblResources_->bind();
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());
     glBindVertexArray(emptyVao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
     endPass("lighting");
 
     beginPass("tonemap");

@@ -14,6 +14,7 @@
 #include "render/environment.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
+#include "render/ibl_modes.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
@@ -52,6 +53,13 @@ public:
     // Meaningless on software renderers (llvmpipe times the submit, not the work).
     void setAsyncGpuTimers(bool enabled) { asyncGpuTimers_ = enabled; }
 
+    // Accumulation for IBL modes that are Monte Carlo estimators (IblMode::accumulates). Sample index 0 starts a
+    // new mean; index k > 0 blends the new estimate into the HDR target with weight 1 / (k + 1) and skips the
+    // G-buffer pass, so the caller promises that scene, camera, size and settings are those of sample 0.
+    // Ignored (always a fresh frame) for deterministic modes.
+    void setSampleIndex(uint32_t index) { sampleIndex_ = index; }
+    bool accumulating() const { return findIblMode(settings_.ibl).accumulates; }
+
     // Renders one frame into the targets (HDR radiance or the debug view, then the display image).
     // With measurePasses, each pass is closed by glFinish and timed (adds sync points; off in the window).
     void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
@@ -81,9 +89,11 @@ private:
     RenderSettings settings_;
     gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    std::unique_ptr<IblModeResources> iblResources_;
     Environment environment_;
     FrameTargets targets_;
-    gl::Buffer frameUniforms_, methodParams_;
+    gl::Buffer frameUniforms_, methodParams_, iblParams_;
+    uint32_t sampleIndex_ = 0;
     gl::VertexArray emptyVao_;
     std::vector<gl::Query> timerQueries_ = std::vector<gl::Query>(3);  // grows when passes are added
     std::vector<PassTiming> timings_;

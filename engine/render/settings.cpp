@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
+#include "render/ibl_modes.h"
 
 namespace glimmer {
 
@@ -48,6 +49,12 @@ const ParamValues& RenderSettings::methodValues(const std::string& id) const {
     return it == methods.end() ? empty : it->second;
 }
 
+const ParamValues& RenderSettings::iblModeValues(const std::string& id) const {
+    static const ParamValues empty;
+    auto it = iblValues.find(id);
+    return it == iblValues.end() ? empty : it->second;
+}
+
 void RenderSettings::apply(const std::string& assignment) {
     size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--set: expected KEY=VALUE, got '" + assignment + "'");
@@ -55,6 +62,17 @@ void RenderSettings::apply(const std::string& assignment) {
     if (const CommonParam* p = findCommon(key)) {
         common[key] = parseParamValue(p->spec, value, "--set", key);
         return;
+    }
+    if (key.rfind("ibl.", 0) == 0) {
+        const IblMode& mode = findIblMode(ibl);
+        std::string name = key.substr(4);
+        for (const ParamSpec& spec : mode.params)
+            if (spec.name == name) {
+                iblValues[ibl][name] = parseParamValue(spec, value, "--set", key);
+                return;
+            }
+        throw UsageError("--set: unknown parameter '" + key + "' for --ibl " + ibl +
+                         " (give --ibl before --set; see glimmer render --list-params)");
     }
     std::string methodId = method, name = key;
     if (size_t dot = key.find('.'); dot != std::string::npos) {
@@ -123,6 +141,12 @@ std::string describeParams() {
         out << "\nMethod " << m.id << ": " << m.title << " [" << m.citation << "]\n";
         if (m.params.empty()) out << "  (no parameters)\n";
         for (const ParamSpec& spec : m.params) line(m.id + "." + spec.name, spec, false);
+    }
+    for (const IblMode& m : iblModes()) {
+        out << "\nIBL mode " << m.id << (m.accumulates ? " (accumulates --spp samples)" : "") << ": " << m.title
+            << " [" << m.citation << "]\n";
+        if (m.params.empty()) out << "  (no parameters)\n";
+        for (const ParamSpec& spec : m.params) line("ibl." + spec.name, spec, false);
     }
     return out.str();
 }

@@ -23,13 +23,16 @@ struct RenderSettings {
     ParamValues common;                         // keys of commonParams()
     std::map<std::string, ParamValues> methods; // method id -> its parameter values
     int debugView = 0;                          // AovInfo::viewId
+    std::string ibl = "prefiltered";            // environment-integration mode (render/ibl_modes.h)
+    std::map<std::string, ParamValues> iblValues;  // mode id -> its parameter values (--set ibl.<name>=V)
 
     float common_(const std::string& name) const;  // value or default of a common parameter
     bool isSet(const std::string& name) const { return common.count(name) != 0; }
     const ParamValues& methodValues(const std::string& id) const;
+    const ParamValues& iblModeValues(const std::string& id) const;
 
-    // Applies one --set KEY=VALUE. KEY is a common parameter, "<method>.<param>", or a bare parameter of the
-    // current method. Throws UsageError naming --set and the key.
+    // Applies one --set KEY=VALUE. KEY is a common parameter, "<method>.<param>", "ibl.<param>" (a parameter of
+    // the current IBL mode), or a bare parameter of the current method. Throws UsageError naming --set and the key.
     void apply(const std::string& assignment);
 };
 

@@ -13,8 +13,9 @@ struct FrameUniforms {          // std140, binding 0
     glm::vec4 skyColor;
     glm::ivec4 viewport;        // width, height, frame index, debug view
     glm::vec4 exposure;         // exposure multiplier, light count, ambient scale, unused
+    glm::uvec4 sample;          // accumulation sample index, unused x3 (see Renderer::setSampleIndex)
 };
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 4 * 16);
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 5 * 16);
 
 struct GpuLight {               // std430, binding 1
     glm::vec4 vectorType;

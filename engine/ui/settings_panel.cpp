@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/aov.h"
+#include "render/ibl_modes.h"
 
 namespace glimmer::ui {
 
@@ -86,6 +87,27 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
             if (edit == Edit::Reset) settings.common.erase(p.spec.name);
             result.settingsChanged |= edit != Edit::None;
         }
+    }
+
+    // Environment integration: the IBL mode selector and the mode's own parameters (render/ibl_modes.h).
+    ui.heading("Environment integration (I)");
+    std::vector<std::string> modes;
+    int modeIndex = 0;
+    for (const IblMode& mode : iblModes()) {
+        if (mode.id == settings.ibl) modeIndex = int(modes.size());
+        modes.push_back(mode.id);
+    }
+    if (ui.selector("ibl", modes, modeIndex)) {
+        settings.ibl = modes[size_t(modeIndex)];
+        result.settingsChanged = result.methodChanged = true;
+    }
+    const IblMode& mode = iblModes()[size_t(modeIndex)];
+    for (const ParamSpec& spec : mode.params) {
+        float value = paramOr(settings.iblModeValues(mode.id), spec);
+        Edit edit = ui.slider("ibl." + spec.name, spec, value);
+        if (edit == Edit::Changed) settings.iblValues[mode.id][spec.name] = value;
+        if (edit == Edit::Reset) settings.iblValues[mode.id].erase(spec.name);
+        result.settingsChanged |= edit != Edit::None;
     }
 
     ui.heading("Window");

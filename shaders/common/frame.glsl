@@ -8,6 +8,7 @@ layout(std140, binding = 0) uniform FrameBlock {
     vec4 u_skyColor;         // rgb: background and constant ambient radiance when no environment map is bound
     ivec4 u_viewport;        // width, height, frame index, debug view (AOV id)
     vec4 u_exposure;         // x: exposure multiplier (2^EV), y: light count, z: ambient scale, w: unused
+    uvec4 u_sample;          // x: accumulation sample index (0 = first estimate of this view; IBL modes)
 };
 
 // Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position).

@@ -10,6 +10,7 @@
 
 layout(binding = 6) uniform samplerCubeArray u_envSpecular;   // layer = NDF; level 0 = unfiltered source
 layout(binding = 7) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
+layout(binding = 24) uniform samplerCube u_envSource;          // unfiltered map, box-filtered mip chain (IBL modes)
 
 // Mirrors EnvironmentUniforms in engine/render/environment.h (std140).
 layout(std140, binding = 7) uniform EnvironmentBlock {
@@ -30,6 +31,16 @@ vec3 envDirection(vec3 d) {
 vec3 envBackground(vec3 d) {
     return u_envParams.x * textureLod(u_envSpecular, vec4(envDirection(d), 0.0), 0.0).rgb;
 }
+
+// Radiance of the unfiltered map around world direction d at mip level `lod` (0 = full resolution; each level
+// halves the face size with a 2x2 box filter). For Monte Carlo and filtered-sampling IBL modes. Under the
+// procedural sky with an analytic sun light, the map holds the sky without the sun (no double counting).
+vec3 envRadiance(vec3 d, float lod) {
+    return u_envParams.x * textureLod(u_envSource, envDirection(d), lod).rgb;
+}
+
+// Number of mip levels of the map read by envRadiance (face size 2^(levels - 1)).
+float envSourceLevels() { return float(textureQueryLevels(u_envSource)); }
 
 // Irradiance / pi at world normal n (Ramamoorthi & Hanrahan 2001, Eq. 13 with the constants folded into u_envSh).
 vec3 envDiffuse(vec3 n) {

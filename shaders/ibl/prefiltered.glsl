@@ -1,0 +1,6 @@
+// IBL mode `prefiltered` (default): the split-sum baseline of common/ibl.glsl, one deterministic evaluation.
+// Glinty materials get the smooth prefiltered lobe here; the glint methods act on the lights.
+vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat3 worldToShading, vec3 diffuseAlbedo,
+                 vec3 f0, bool glinty, uint sampleIndex) {
+    return envLighting(s.n, toEyeWorld, diffuseAlbedo, f0, s.alpha, s.ndf);
+}
