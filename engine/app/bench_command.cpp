@@ -18,7 +18,8 @@ namespace glimmer {
 
 static const char* kBenchHelp =
     "usage: glimmer bench [--suite NAME] [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--warmup N]\n"
-    "                     [--lights K] [--camera NAME] [--set KEY=VALUE ...] [--backend egl|osmesa]\n"
+    "                     [--lights K] [--camera NAME] [--set KEY=VALUE ...] [--env SPEC] [--ibl MODE]\n"
+    "                     [--backend egl|osmesa]\n"
     "                     [--json FILE] [--csv FILE] [--markdown FILE]\n"
     "       glimmer bench --temporal [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--step S]\n"
     "                     [--json FILE] [--markdown FILE]\n"
@@ -108,6 +109,8 @@ int runBenchCommand(const std::vector<std::string>& argList) {
         options.backend = request.backend;
         options.shaderRoot = request.shaderRoot;
         options.extraSets = extraSets;
+        options.environment = request.environment;
+        options.ibl = request.settings.ibl;
         options.progress = progress;
         if (csvPath) throw UsageError("--csv: not available with --temporal (use --json)");
         args.finish();
@@ -134,8 +137,9 @@ int runBenchCommand(const std::vector<std::string>& argList) {
     options.shaderRoot = request.shaderRoot;
     options.extraSets = extraSets;
     options.progress = progress;
+    options.environment = request.environment;
+    options.ibl = request.settings.ibl;
     args.finish();
-    if (request.environment) throw UsageError("--env: not supported by bench (scenes use their own environment)");
 
     bench::BenchReport report = bench::runBench(options);
     std::string markdown = bench::toMarkdown(report);

@@ -4,6 +4,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ struct BenchOptions {
     Backend backend = Backend::Egl;
     std::filesystem::path shaderRoot;
     std::vector<std::string> extraSets;      // --set given on the command line, applied after the variant's
+    std::optional<std::string> environment;  // --env (default: the scene's)
+    std::string ibl = "prefiltered";         // --ibl mode
     std::function<void(const std::string&)> progress;  // one line per case (the command prints to stderr)
 };
 

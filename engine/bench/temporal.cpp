@@ -104,12 +104,15 @@ std::vector<TemporalResult> runTemporal(const TemporalOptions& options) {
         request.height = options.height;
         request.backend = options.backend;
         request.shaderRoot = options.shaderRoot;
+        request.environment = options.environment;
         request.settings.method = methods.front();
+        request.settings.ibl = options.ibl;
         OffscreenSession session(request);
         std::vector<Camera> path = dollyPath(session.scene().camera(options.camera), options.frames, options.step);
         for (const std::string& method : methods) {
             request.settings = RenderSettings();
             request.settings.method = method;
+            request.settings.ibl = options.ibl;
             for (const std::string& set : options.extraSets) request.settings.apply(set);
             TemporalResult result{scene, method, {}, 0, 0, 0};
             GlintFrame previous = captureFrame(session, request, path.front());

@@ -6,6 +6,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,8 @@ struct TemporalOptions {
     Backend backend = Backend::Egl;
     std::filesystem::path shaderRoot;
     std::vector<std::string> extraSets;
+    std::optional<std::string> environment;  // --env (default: the scene's)
+    std::string ibl = "prefiltered";
     std::function<void(const std::string&)> progress;
 };
 
