@@ -4,7 +4,8 @@
 usage: plot_bench.py BENCH.json OUT.png [--title TEXT]
 
 Each bar is the median frame time of one method in one scene (and suite variant); with a density sweep the bar
-shows the sweep's median and the whisker its min..max, like Deliot & Belcour's Table 1 ranges.
+shows the sweep's median and the whisker its min..max, like Deliot & Belcour's Table 1 ranges. A second panel
+shows process CPU time per frame (steadier than wall time on a shared machine with a software renderer).
 Needs python3 and matplotlib (Debian: python3-matplotlib).
 """
 import argparse
@@ -33,38 +34,45 @@ def main():
         sys.exit(f"plot_bench: {args.bench_json}: not a glimmer bench JSON (schema {bench.get('schema')!r})")
 
     methods, groups = [], []
-    times = {}  # (group, method) -> medians over the sweep
+    wall, cpu = {}, {}  # (group, method) -> medians over the sweep
     for r in bench["results"]:
         group = r["scene"] + ("\n" + r["variant"] if r["variant"] else "")
         if r["method"] not in methods:
             methods.append(r["method"])
         if group not in groups:
             groups.append(group)
-        times.setdefault((group, r["method"]), []).append(r["median_ms"])
+        wall.setdefault((group, r["method"]), []).append(r["median_ms"])
+        if "cpu_median_ms" in r:
+            cpu.setdefault((group, r["method"]), []).append(r["cpu_median_ms"])
 
-    fig, ax = plt.subplots(figsize=(max(6.0, 1.4 * len(groups) + 2.0), 4.5))
+    panels = [(wall, "wall ms per frame (median, glFinish)")]
+    if cpu:
+        panels.append((cpu, "process CPU ms per frame (median)"))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(max(6.0, 1.4 * len(groups) + 2.0), 3.6 * len(panels)),
+                             squeeze=False)
     width = 0.8 / max(1, len(methods))
-    for m, method in enumerate(methods):
-        xs, heights, low, high = [], [], [], []
-        for g, group in enumerate(groups):
-            values = times.get((group, method))
-            if not values:
-                continue
-            mid = statistics.median(values)
-            xs.append(g + (m - (len(methods) - 1) / 2) * width)
-            heights.append(mid)
-            low.append(mid - min(values))
-            high.append(max(values) - mid)
-        ax.bar(xs, heights, width, label=method, yerr=[low, high], capsize=2)
-    ax.set_xticks(range(len(groups)))
-    ax.set_xticklabels(groups, fontsize=8)
-    ax.set_ylabel("ms per frame (median, wall clock)")
+    for ax, (times, label) in zip(axes[:, 0], panels):
+        for m, method in enumerate(methods):
+            xs, heights, low, high = [], [], [], []
+            for g, group in enumerate(groups):
+                values = times.get((group, method))
+                if not values:
+                    continue
+                mid = statistics.median(values)
+                xs.append(g + (m - (len(methods) - 1) / 2) * width)
+                heights.append(mid)
+                low.append(mid - min(values))
+                high.append(max(values) - mid)
+            ax.bar(xs, heights, width, label=method, yerr=[low, high], capsize=2)
+        ax.set_xticks(range(len(groups)))
+        ax.set_xticklabels(groups, fontsize=8)
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(axis="y", alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
     meta = bench.get("meta", {})
     size = meta.get("resolution", ["?", "?"])
     title = args.title or f"glimmer bench {meta.get('suite', '')}, {size[0]}x{size[1]}, {meta.get('gl_renderer', '')}"
-    ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=8)
-    ax.grid(axis="y", alpha=0.3)
+    axes[0, 0].set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(args.out_png, dpi=110)
 
