@@ -302,7 +302,9 @@ static std::string csvField(const std::string& text) {
 std::string toCsv(const BenchReport& report) {
     std::ostringstream out;
     out << "scene,variant,method,sweep_param,sweep_value,sample,wall_ms,cpu_ms,median_ms,ratio_to_smooth,"
-           "gbuffer_gpu_timer_ms,lighting_gpu_timer_ms,tonemap_gpu_timer_ms\n";
+           "gbuffer_gpu_timer_ms,lighting_gpu_timer_ms,tonemap_gpu_timer_ms,gpu_timers_meaningful\n";
+    // GL timer queries time the submit on software renderers: every row says whether its timer columns mean anything.
+    std::string meaningful = report.meta.is_object() && report.meta.value("gpu_timers_meaningful", false) ? "1" : "0";
     for (const BenchResult& r : report.results) {
         const BenchCase& c = r.benchCase;
         for (size_t i = 0; i < r.samples.size(); ++i) {
@@ -316,7 +318,7 @@ std::string toCsv(const BenchReport& report) {
                 << formatNumber(c.sweepValue) << ',' << i << ',' << formatNumber(s.wallMs) << ','
                 << formatNumber(s.cpuMs) << ',' << formatNumber(r.medianMs) << ','
                 << (r.ratioToSmooth > 0 ? formatNumber(r.ratioToSmooth) : "") << ',' << gpu("gbuffer") << ','
-                << gpu("lighting") << ',' << gpu("tonemap") << '\n';
+                << gpu("lighting") << ',' << gpu("tonemap") << ',' << meaningful << '\n';
         }
     }
     return out.str();
@@ -352,7 +354,9 @@ std::string toMarkdown(const BenchReport& report) {
     out << "Suite `" << meta.value("suite", "custom") << "`, " << size << ", " << meta.value("frames", 0)
         << " timed frames after " << meta.value("warmup", 0) << " warm-up, renderer `" << meta.value("gl_renderer", "?")
         << "`. Median wall ms per frame (glFinish) and ratio to smooth in the same run"
-        << (swept ? "; min-max over the density sweep" : "") << ".\n\n";
+        << (swept ? "; min-max over the density sweep" : "") << ". GL timer queries per pass are in the JSON and CSV"
+        << (meta.value("gpu_timers_meaningful", false) ? "." : " but meaningless on this (software) renderer.")
+        << "\n\n";
     auto timeTable = [&](double BenchResult::*metric, double BenchResult::*ratio) {
         out << "| method |";
         for (const std::string& col : columns) {
