@@ -221,7 +221,8 @@ TEST(BenchPlot, ScriptMakesPng) {
     EXPECT_GT(std::filesystem::file_size(dir / "plot.png"), 1000u);
 }
 
-// Grid geometry, labels drawn with the bitmap font, each tile equal to that method's own render, crops zoomed.
+// Grid geometry, labels drawn with the bitmap font, each tile equal to that method's own render apart from the
+// crop frame, crops zoomed.
 TEST(BenchCompare, GridTilesEqualSingleRendersWithLabelsAndCrops) {
     RenderRequest base;
     base.scene = "plane25";
@@ -255,12 +256,23 @@ TEST(BenchCompare, GridTilesEqualSingleRendersWithLabelsAndCrops) {
         RenderRequest single = base;
         single.settings.method = tile.method;
         RenderResult alone = renderOffscreen(single);
-        int differing = 0;
+        // Every pixel equals the single render except the crop's 1-pixel frame (x 9..26, y 19..28), which is red.
+        int differing = 0, frame = 0, frameRed = 0;
         for (int y = 0; y < 64; ++y)
-            for (int x = 0; x < 96; ++x)
-                for (int c = 0; c < 3; ++c)
-                    differing += pixel(tile.renderX + x, tile.renderY + y)[c] != alone.display[(size_t(63 - y) * 96 + x) * 4 + c];
+            for (int x = 0; x < 96; ++x) {
+                bool inside = x >= 10 && x < 26 && y >= 20 && y < 28;
+                bool onFrame = x >= 9 && x <= 26 && y >= 19 && y <= 28 && !inside;
+                const uint8_t* p = pixel(tile.renderX + x, tile.renderY + y);
+                if (onFrame) {
+                    ++frame;
+                    frameRed += p[0] == kCropColours[0][0] && p[1] == kCropColours[0][1] && p[2] == kCropColours[0][2];
+                    continue;
+                }
+                for (int c = 0; c < 3; ++c) differing += p[c] != alone.display[(size_t(63 - y) * 96 + x) * 4 + c];
+            }
         EXPECT_EQ(differing, 0);
+        EXPECT_EQ(frame, 2 * 18 + 2 * 8);
+        EXPECT_EQ(frameRed, frame);
         const CropRect& inset = tile.insets[0];
         for (int y = 0; y < inset.height; ++y)
             for (int x = 0; x < inset.width; ++x) {

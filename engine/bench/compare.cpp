@@ -58,7 +58,7 @@ void drawText(std::vector<uint8_t>& rgba, int width, int height, int x, int y, c
 }
 
 // Distinct outline colours for the crops, so each inset can be matched to its region.
-static const uint8_t kCropColours[][3] = {{255, 80, 80}, {80, 200, 255}, {120, 255, 120}, {255, 220, 60}};
+const uint8_t kCropColours[4][3] = {{255, 80, 80}, {80, 200, 255}, {120, 255, 120}, {255, 220, 60}};
 
 CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::string>& methodIds,
                              const std::vector<CropRect>& crops) {
@@ -114,6 +114,16 @@ CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::s
         // Render rows are bottom-up; the grid is top-down.
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) put(tile.renderX + x, tile.renderY + y, &result.display[(size_t(h - 1 - y) * w + x) * 4]);
+        // Mark each crop on the tile with a 1-pixel frame just outside the region, in the inset's colour, as the
+        // papers' figures do (the region itself stays untouched).
+        for (size_t c = 0; c < crops.size(); ++c) {
+            const CropRect& crop = crops[c];
+            for (int y = crop.y - 1; y <= crop.y + crop.height; ++y)
+                for (int x = crop.x - 1; x <= crop.x + crop.width; ++x) {
+                    bool edge = x == crop.x - 1 || y == crop.y - 1 || x == crop.x + crop.width || y == crop.y + crop.height;
+                    if (edge && x >= 0 && y >= 0 && x < w && y < h) put(tile.renderX + x, tile.renderY + y, kCropColours[c % 4]);
+                }
+        }
         int insetY = tile.renderY + h + kCompareGap;
         for (size_t c = 0; c < crops.size(); ++c) {
             const CropRect& crop = crops[c];

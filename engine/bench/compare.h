@@ -1,6 +1,7 @@
 // `glimmer render --compare m1,m2,...`: the same view rendered with smooth and each listed method, laid out side by
 // side as one labelled image like the papers' comparison figures, with optional zoomed crops (nearest-neighbour
-// insets below each tile). Labels are drawn on the CPU with the UI's bitmap font.
+// insets below each tile, each crop framed on the tiles in its inset's colour). Labels are drawn on the CPU with
+// the UI's bitmap font.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -28,6 +29,9 @@ struct CompareGrid {
     std::vector<uint8_t> rgba;                // RGBA8 sRGB, top-down rows
     std::vector<CompareTile> tiles;
 };
+
+// Frame colours of crops 0..3 (repeating): red, light blue, green, yellow.
+extern const uint8_t kCropColours[4][3];
 
 // Font scale of the labels and the gap between tiles, in pixels.
 constexpr int kCompareLabelScale = 2;
