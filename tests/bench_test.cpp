@@ -187,6 +187,26 @@ TEST(BenchCommand, WritesJsonCsvAndMarkdown) {
     EXPECT_EQ(readAll(dir / "b.md"), run.out);
 }
 
+TEST(BenchCommand, TemporalAndSuiteListingFromTheExecutable) {
+    std::filesystem::path dir = test::testOutputDir() / "bench";
+    std::filesystem::create_directories(dir);
+    auto run = test::runGlimmer({"bench", "--temporal", "--scenes", "plane25", "--methods", "smooth", "--size", "32x24",
+                                 "--frames", "3", "--json", (dir / "t.json").string()});
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("| plane25 | smooth |"), std::string::npos) << run.out;
+    nlohmann::json json = nlohmann::json::parse(readAll(dir / "t.json"));
+    EXPECT_EQ(json["schema"], "glimmer-bench-temporal/1");
+    ASSERT_EQ(json["results"].size(), 1u);
+    EXPECT_EQ(json["results"][0]["flicker_per_pair"].size(), 2u);
+    EXPECT_TRUE(std::isfinite(json["results"][0]["flicker_mean"].get<double>()));
+    auto list = test::runGlimmer({"bench", "--list-suites"});
+    ASSERT_EQ(list.exitCode, 0);
+    for (const BenchSuite& suite : benchSuites()) EXPECT_NE(list.out.find(suite.name), std::string::npos);
+    auto step = test::runGlimmer({"bench", "--temporal", "--step", "2"});
+    EXPECT_EQ(step.exitCode, 2);
+    EXPECT_NE(step.err.find("--step"), std::string::npos) << step.err;
+}
+
 TEST(BenchCommand, BadInputIsOneLineError) {
     auto suite = test::runGlimmer({"bench", "--suite", "nope"});
     EXPECT_EQ(suite.exitCode, 2);
