@@ -297,7 +297,11 @@ int blockTerms(const Params& params, const PixelSetup& px, int ndf, int q, int l
             glm::dvec2 ga = centre / extent;
             if (glm::dot(ga - 0.5, ga - 0.5) >= 0.25) continue;
             glm::dvec2 ds = proc.xs - (glm::dvec2(cellS) + p.spatial) / resS;
-            double spatial = std::exp(-0.5 * glm::dot(ds, invCov * ds));
+            // A term whose spatial Gaussian is below e^-50 is absent, as in the shader: float underflows where
+            // double does not, and the reservoir draws one number per present term, so both must agree on which
+            // terms exist for the CPU twin to follow the shader's random stream sample by sample.
+            double exponent = glm::dot(ds, invCov * ds);
+            double spatial = exponent < 100.0 ? std::exp(-0.5 * exponent) : 0.0;
             double w = roulette(p.roulette, levelWeight) * spatial * luminance(glintColor(p.hue, params.colorVariation));
             if (!(w > 0.0)) continue;
             double d = smoothD(fromPrior(ga, px.alpha, ndf), px.alpha, ndf);
@@ -365,7 +369,8 @@ HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& px, in
     } else {
         int side = params.neighbors == 16 ? 4 : 2;
         double resA = std::exp2(level);
-        glm::dvec2 xa = glm::dvec2(rng.next(), rng.next()) * extent;   // line 2 (over the square)
+        // Braces: list-initialisation evaluates left to right, as GLSL does (parentheses leave C++ the order).
+        glm::dvec2 xa = glm::dvec2{rng.next(), rng.next()} * extent;   // line 2 (over the square)
         glm::ivec2 a0 = glm::ivec2(glm::floor(xa * resA - (0.5 * side - 0.5)));
         SampleTerm terms[64];
         BlockGeometry block;
@@ -380,7 +385,7 @@ HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& px, in
         }
         if (chosen < 0) {
             // Empty block: uniform inside it (kept in the pdf).
-            xPrime = block.lo + glm::dvec2(rng.next(), rng.next()) * (block.hi - block.lo);
+            xPrime = block.lo + glm::dvec2{rng.next(), rng.next()} * (block.hi - block.lo);
         } else {
             const SampleTerm& t = terms[chosen];
             xPrime = {sampleTruncatedNormal(t.centre.x, t.sigma, block.lo.x, block.hi.x, rng.next()),

@@ -61,7 +61,10 @@ KemppinenTerm kemppinenBlockTerm(GlintPixel px, int ndf, KemppinenProcess proc, 
     if (dot(ga - 0.5, ga - 0.5) >= 0.25) return t;
     vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
     vec3 invCovS = proc.invCovCell[li];
-    float spatial = exp(-0.5 * (ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z));
+    // Below e^-50 the term is absent (the CPU twin cuts at the same exponent: float underflows where double does
+    // not, and the reservoir draws one random number per present term).
+    float exponent = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z;
+    float spatial = exponent < 100.0 ? exp(-0.5 * exponent) : 0.0;
     vec3 c = kemppinenGlintColor(p.hue, px.colorVariation);
     t.weight = kemppinenRoulette(p.roulette, levelWeight) * spatial * dot(c, vec3(0.2126, 0.7152, 0.0722));
     float d = kemppinenSmoothD(kemppinenFromPrior(ga, px.alpha, ndf), px.alpha, ndf);
