@@ -51,9 +51,10 @@ Footprint footprint(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy, const Params
     double b = double(duvdx.x) * duvdx.y + double(duvdy.x) * duvdy.y;
     double c = double(duvdx.y) * duvdx.y + double(duvdy.y) * duvdy.y;
     double mean = 0.5 * (a + c), diff = 0.5 * (a - c), root = std::sqrt(diff * diff + b * b);
-    double l1 = mean + root, l2 = std::max(mean - root, 0.0);
+    double l1 = mean + root;
     double major = std::max(std::sqrt(std::max(l1, 1e-24)), 1e-20);
-    double minor = std::max(std::max(std::sqrt(l2), 1e-12), major * 1e-6);
+    double detJ = std::abs(double(duvdx.x) * duvdy.y - double(duvdx.y) * duvdy.x);  // major x minor
+    double minor = std::max(std::clamp(detJ / major, 1e-12, major), major * 1e-6);
     glm::dvec2 dir = std::abs(b) > 1e-30 ? glm::dvec2(l1 - c, b) : (a >= c ? glm::dvec2(1, 0) : glm::dvec2(0, 1));
     dir = glm::normalize(dir);
     Footprint f;

@@ -29,3 +29,11 @@ void pinGlDriversUnderSanitizers() {
 }
 
 }  // namespace glimmer
+
+#if defined(__SANITIZE_ADDRESS__)
+// LeakSanitizer's built-in suppressions hook, compiled into every binary that creates a GL context: leaks inside the
+// GL stack (Mesa, LLVM, GLVND, X11), not ours. With the driver pinned above, their stacks name these modules.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libLLVM\nleak:libgallium\nleak:mesa\nleak:libEGL\nleak:libGLX\nleak:libGLdispatch\nleak:libOSMesa\nleak:libX11\nleak:libglfw\nleak:libdl\nleak:libglapi\nleak:dri\n";
+}
+#endif

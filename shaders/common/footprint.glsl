@@ -14,10 +14,13 @@ FootprintEllipse footprintEllipse(vec2 duvdx, vec2 duvdy) {
     float mean = 0.5 * (a + c);
     float diff = 0.5 * (a - c);
     float root = sqrt(diff * diff + b * b);
-    float l1 = mean + root, l2 = max(mean - root, 0.0);
+    float l1 = mean + root;
     FootprintEllipse e;
     e.major = sqrt(max(l1, 1e-24));
-    e.minor = max(sqrt(l2), 1e-12);
+    // The minor axis from the determinant (major x minor = |det J|) rather than sqrt(mean - root): the difference
+    // cancels catastrophically in float for the very elongated footprints of grazing views.
+    float detJ = abs(duvdx.x * duvdy.y - duvdx.y * duvdy.x);
+    e.minor = clamp(detJ / e.major, 1e-12, e.major);
     vec2 dir = abs(b) > 1e-30 ? vec2(l1 - c, b) : (a >= c ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
     e.majorDir = normalize(dir);
     return e;
