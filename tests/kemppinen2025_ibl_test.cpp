@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "core/clock.h"
@@ -295,51 +296,55 @@ struct SphereLook {
 
 class SphereIblRig {
 public:
-    SphereIblRig(const std::string& environment, const SphereLook& look) : scene_(makeBuiltinScene("sphere")), look_(look) {
-        scene_.environment = environment;
+    explicit SphereIblRig(const std::string& environment) : base_(makeBuiltinScene("sphere")) {
+        base_.environment = environment;
         context_ = createHeadlessContext(Backend::Egl);
-        RenderSettings settings = settingsFor("glint-is", 0);
-        applySceneOverrides(settings, scene_);
+        scene_ = base_;
         gpuScene_ = std::make_unique<GpuScene>(scene_);
     }
     ~SphereIblRig() {
         context_->makeCurrent();
-        renderer_.reset();
+        renderers_.clear();
         gpuScene_.reset();
     }
-    RenderSettings settingsFor(const std::string& mode, int seed) const {
+    static RenderSettings settingsFor(const SphereLook& look, const std::string& mode, int seed) {
         RenderSettings settings;
         settings.method = "kemppinen2025";
-        settings.common["material.ndf"] = float(look_.ndf);
-        settings.methods["kemppinen2025"]["density"] = look_.density;
-        settings.methods["kemppinen2025"]["micro_roughness"] = look_.microRoughness;
+        settings.common["material.ndf"] = float(look.ndf);
+        settings.methods["kemppinen2025"]["density"] = look.density;
+        settings.methods["kemppinen2025"]["micro_roughness"] = look.microRoughness;
         settings.ibl = mode;
         settings.iblValues[mode]["seed"] = float(seed);
         return settings;
     }
     // Mean of `spp` estimates of `mode` with random-stream offset `seed`: RGBA32F rows, alpha 1 on the sphere.
-    std::vector<float> render(const std::string& mode, int spp, int seed, int size) {
+    // One renderer per mode, so each lighting program is compiled once (the tests run without a shader cache).
+    std::vector<float> render(const SphereLook& look, const std::string& mode, int spp, int seed, int size) {
         context_->makeCurrent();
-        RenderSettings settings = settingsFor(mode, seed);
-        if (!renderer_)
-            renderer_ = std::make_unique<Renderer>(defaultShaderDir(), settings);
+        RenderSettings settings = settingsFor(look, mode, seed);
+        scene_ = base_;
+        applySceneOverrides(settings, scene_);
+        gpuScene_->updateMaterialsAndLights(scene_);
+        std::unique_ptr<Renderer>& renderer = renderers_[mode];
+        if (!renderer)
+            renderer = std::make_unique<Renderer>(defaultShaderDir(), settings);
         else
-            renderer_->setSettings(settings);
+            renderer->setSettings(settings);
         for (int i = 0; i < spp; ++i) {
-            renderer_->setSampleIndex(uint32_t(i));
-            renderer_->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
+            renderer->setSampleIndex(uint32_t(i));
+            renderer->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
         }
         glFinish();
-        return renderer_->readHdr();
+        return renderer->readHdr();
     }
 
 private:
     std::unique_ptr<GLContext> context_;
-    Scene scene_;
-    SphereLook look_;
+    Scene base_, scene_;
     std::unique_ptr<GpuScene> gpuScene_;
-    std::unique_ptr<Renderer> renderer_;
+    std::map<std::string, std::unique_ptr<Renderer>> renderers_;
 };
+
 // RMSE over the sphere's pixels (alpha > 0.5) and the three channels.
 double sphereRmse(const std::vector<float>& image, const std::vector<float>& reference) {
     double sum = 0.0;
@@ -385,11 +390,10 @@ struct ConvergenceResult {
 
 // Renders the reference (glint-is, kReferenceSpp, its own seed) and both modes at 1, 2, 4, ... kMaxSpp spp (each
 // with a fresh seed, so the points are independent), and prints the table of the paper's Fig. 7.
-ConvergenceResult runConvergence(const std::string& environment, const SphereLook& look, const char* label, int size,
+ConvergenceResult runConvergence(SphereIblRig& rig, const SphereLook& look, const char* label, int size,
                                  int referenceSpp, int maxSpp) {
-    SphereIblRig rig(environment, look);
     Stopwatch clock;
-    std::vector<float> reference = rig.render("glint-is", referenceSpp, 1000, size);
+    std::vector<float> reference = rig.render(look, "glint-is", referenceSpp, 1000, size);
     double referenceMs = clock.elapsedMs();
     ConvergenceResult r;
     r.referenceMean = sphereMean(reference);
@@ -398,8 +402,8 @@ ConvergenceResult runConvergence(const std::string& environment, const SphereLoo
     std::printf("[%s]  spp | RMSE glint-is | RMSE ndf-is | ndf-is / glint-is\n", label);
     int seed = 1;
     for (int spp = 1; spp <= maxSpp; spp *= 2) {
-        std::vector<float> glint = rig.render("glint-is", spp, seed++, size);
-        std::vector<float> ndf = rig.render("ndf-is", spp, seed++, size);
+        std::vector<float> glint = rig.render(look, "glint-is", spp, seed++, size);
+        std::vector<float> ndf = rig.render(look, "ndf-is", spp, seed++, size);
         r.spp.push_back(spp);
         r.rmseGlint.push_back(sphereRmse(glint, reference));
         r.rmseNdf.push_back(sphereRmse(ndf, reference));
@@ -442,10 +446,11 @@ void checkConvergence(const ConvergenceResult& r, const char* label) {
 // at the LOD of this view), where the paper says importance sampling pays ("effectiveness increases with the
 // specularity"). 128x128, reference glint-is 128 spp with its own seed, 1..8 spp.
 TEST(Kemppinen2025Ibl, ConvergenceOnGlintySphereProceduralSky) {
+    SphereIblRig rig("procedural");
     for (int ndf : {0, 1}) {
         const char* label = ndf == 0 ? "procedural sky, GGX" : "procedural sky, Beckmann";
         SphereLook look;
         look.ndf = ndf;
-        checkConvergence(runConvergence("procedural", look, label, 128, 128, 8), label);
+        checkConvergence(runConvergence(rig, look, label, 128, 128, 8), label);
     }
 }
