@@ -24,6 +24,7 @@
 #include "glints/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
+#include "render/aov.h"
 #include "render/environment.h"
 #include "render/environment_reference.h"
 #include "render/gpu_scene.h"
@@ -453,4 +454,94 @@ TEST(Kemppinen2025Ibl, ConvergenceOnGlintySphereProceduralSky) {
         look.ndf = ndf;
         checkConvergence(runConvergence(rig, look, label, 128, 128, 8), label);
     }
+}
+
+// 4. Through the real renderer (G-buffer, lighting pass, IBL mode file): one glint-is sample per pixel of the
+// glinty sphere under a constant environment of radiance 1 (lights at intensity 0) equals the CPU estimator at the
+// same pixel and sample index, the surface rebuilt from the G-buffer AOVs (UV, derivatives, normal and tangent as
+// stored; the bitangent's handedness and the view direction from the sphere's geometry). At least 97% of the
+// covered pixels agree within 1% (measured 1736 of 1756); the rest are float / double branch flips and silhouette
+// pixels where the flat triangles and the analytic sphere differ. A mirrored shading frame: 705 of 1756.
+TEST(Kemppinen2025Ibl, RenderedSampleMatchesCpuEstimatorPerPixel) {
+    const int size = 64;
+    SphereLook look;   // sparse sharp glints: a wrong glint, pdf or frame changes the value by far more than 1%
+    Scene base = makeBuiltinScene("sphere");
+    base.environment = "constant:1,1,1";
+    auto context = createHeadlessContext(Backend::Egl);
+    RenderSettings settings = SphereIblRig::settingsFor(look, "glint-is", 0);
+    settings.common["light.intensity"] = 0.0f;
+    Scene scene = base;
+    applySceneOverrides(settings, scene);
+    auto gpuScene = std::make_unique<GpuScene>(scene);
+    auto renderer = std::make_unique<Renderer>(defaultShaderDir(), settings);
+    auto view = [&](const char* aov) {
+        RenderSettings s = settings;
+        s.debugView = findAov(aov).viewId;
+        renderer->setSettings(s);
+        renderer->setSampleIndex(0);
+        renderer->render(scene, *gpuScene, scene.cameras.front(), size, size);
+        glFinish();
+        return renderer->readHdr();
+    };
+    std::vector<float> radiance = view("final"), uv = view("uv"), dx = view("duvdx"), dy = view("duvdy"),
+                       normal = view("normal"), tangent = view("tangent");
+    renderer.reset();
+    gpuScene.reset();
+
+    const Camera& camera = scene.cameras.front();
+    glm::dmat4 invVp = glm::inverse(glm::dmat4(camera.projection(1.0f)) * glm::dmat4(camera.view()));
+    glm::dvec3 eye(camera.position);
+    k25::Params params;
+    params.density = look.density;
+    params.microRoughness = look.microRoughness;
+    const Material& material = scene.materials.front();
+    glm::dvec3 f0 = glm::dvec3(material.baseColor);   // metallic 1
+    auto constantSky = [](const glm::dvec3&) { return glm::dvec3(1.0); };
+    int covered = 0, agree = 0, nonZero = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            size_t i = (size_t(y) * size + x) * 4;
+            if (radiance[i + 3] < 0.5f) continue;
+            // The pixel's ray hits the unit sphere (the mesh's flat triangles differ by < 3e-4).
+            glm::dvec4 p = invVp * glm::dvec4((x + 0.5) / size * 2.0 - 1.0, (y + 0.5) / size * 2.0 - 1.0, 0.5, 1.0);
+            glm::dvec3 dir = glm::normalize(glm::dvec3(p) / p.w - eye);
+            double b = glm::dot(eye, dir), c = glm::dot(eye, eye) - 1.0, disc = b * b - c;
+            if (disc <= 0.0) continue;
+            glm::dvec3 position = eye + dir * (-b - std::sqrt(disc));
+            ++covered;
+            glm::dvec3 n = glm::normalize(glm::dvec3(normal[i], normal[i + 1], normal[i + 2]));
+            glm::dvec3 t(tangent[i], tangent[i + 1], tangent[i + 2]);
+            t = glm::normalize(t - n * glm::dot(n, t));
+            // makeUvSphere: handedness +1 when cross(n, t) follows dP/dtheta.
+            glm::dvec3 pn = glm::normalize(position);
+            double theta = std::acos(std::clamp(pn.y, -1.0, 1.0)), phi = std::atan2(-pn.z, pn.x);
+            glm::dvec3 dPdtheta(std::cos(theta) * std::cos(phi), -std::sin(theta), -std::cos(theta) * std::sin(phi));
+            double handedness = glm::dot(glm::cross(n, t), dPdtheta) < 0.0 ? -1.0 : 1.0;
+            glm::dvec3 bt = handedness * glm::cross(n, t);
+            k25::Surface surface;
+            surface.uv = {uv[i], uv[i + 1]};
+            surface.duvdx = {dx[i], dx[i + 1]};
+            surface.duvdy = {dy[i], dy[i + 1]};
+            surface.alpha = material.alpha;
+            surface.ndf = look.ndf;
+            k25::PixelSetup setup = k25::setupPixel(params, surface);
+            iblref::ShadingPoint sp;
+            sp.frame = glm::dmat3(t, bt, n);
+            sp.wo = glm::transpose(sp.frame) * glm::normalize(eye - position);
+            sp.alpha = material.alpha;
+            sp.ndf = look.ndf;
+            sp.f0 = f0;
+            iblref::NdfFn glintNdf = [&](const glm::dvec3& h) { return k25::filteredNdf(params, setup, look.ndf, h); };
+            glm::dvec3 cpu = iblref::estimate(iblref::Mode::GlintIs, sp, true, glintNdf, {&params, &setup}, {x, y}, 0u,
+                                              0u, constantSky);
+            glm::dvec3 gpu(radiance[i], radiance[i + 1], radiance[i + 2]);
+            if (cpu != glm::dvec3(0.0)) ++nonZero;
+            double error = glm::length(gpu - cpu) / std::max(glm::length(cpu), 0.01);
+            if (error <= 0.01) ++agree;
+        }
+    std::printf("[render vs CPU] %d of %d sphere pixels agree within 1%% (%d non-zero estimates)\n", agree, covered,
+                nonZero);
+    EXPECT_GT(covered, size * size / 4);
+    EXPECT_GT(nonZero, covered / 2);
+    EXPECT_GE(agree, int(0.97 * covered));
 }
