@@ -19,9 +19,44 @@ static IblMode prefilteredMode() {
             nullptr};
 }
 
+// Monte Carlo modes of issue 5: `seed` offsets the random streams so that two renders are independent (a
+// reference image must not share samples with the render it judges).
+static ParamSpec seedParam() {
+    return {"seed", 0.0f, 0.0f, 1e6f, "random stream offset: renders with different seeds are independent",
+            {}, true, false};
+}
+
+// Smooth-NDF importance sampling (shaders/ibl/ndf_is.glsl): the comparison baseline, any glint method.
+static IblMode ndfIsMode() {
+    return {"ndf-is",
+            "Monte Carlo, half vectors sampled from the smooth NDF",
+            "IBL_MODE_NDF_IS",
+            "ibl/ndf_is.glsl",
+            "Walter et al. 2007 (NDF sampling, Eq. 28-29, 35-36); the comparison of Kemppinen et al. 2025, Fig. 7",
+            {seedParam()},
+            true,
+            {},
+            nullptr};
+}
+
+// Glinty-NDF importance sampling (shaders/ibl/glint_is.glsl): Algorithm 2 of Kemppinen et al. 2025.
+static IblMode glintIsMode() {
+    return {"glint-is",
+            "Monte Carlo, half vectors sampled from the filtered glinty NDF",
+            "IBL_MODE_GLINT_IS",
+            "ibl/glint_is.glsl",
+            "Kemppinen et al. 2025, Evaluating and Sampling Glinty NDFs in Constant Time, Sec. 3.3.5, Algorithm 2",
+            {seedParam()},
+            true,
+            {"kemppinen2025"},
+            nullptr};
+}
+
 const std::vector<IblMode>& iblModes() {
     static const std::vector<IblMode> modes = {
         prefilteredMode(),
+        ndfIsMode(),
+        glintIsMode(),
     };
     return modes;
 }
