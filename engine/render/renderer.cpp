@@ -246,7 +246,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     }
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
-    if (iblResources_) iblResources_->bind();
+    if (iblResources_) {
+        iblResources_->prepare(settings_.iblModeValues(ibl.id), scene);
+        iblResources_->bind();
+    }
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());

@@ -1,0 +1,97 @@
+#include "ibl/kurt_ibl_resources.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene/scene.h"
+
+namespace glimmer::ibl {
+
+namespace {
+float valueOf(const std::vector<ParamSpec>& specs, const ParamValues& values, const std::string& name,
+              float fallback) {
+    for (const ParamSpec& s : specs)
+        if (s.name == name) return paramOr(values, s);
+    return fallback;
+}
+}  // namespace
+
+std::vector<ParamSpec> kurtMaterialParams() {
+    return {
+        {"mx", 0.0f, 0.0f, 1.0f, "Kurt lobe Beckmann roughness along the tangent (0: the material's alpha)"},
+        {"my", 0.0f, 0.0f, 1.0f, "Kurt lobe Beckmann roughness along the bitangent (0: the material's alpha)"},
+        {"r0", -1.0f, -1.0f, 1.0f, "Schlick reflectance at normal incidence (-1: the material's F0)"},
+        {"shadow_alpha", 0.0f, 0.0f, 1.0f, "Kurt shadowing/masking exponent alpha (Eq. 2)"},
+        {"lobe2_ks", 0.0f, 0.0f, 1.0f, "weight of a second glossy lobe (0: one lobe)"},
+        {"lobe2_mx", 0.3f, 0.01f, 1.0f, "second lobe roughness along the tangent"},
+        {"lobe2_my", 0.3f, 0.01f, 1.0f, "second lobe roughness along the bitangent"},
+    };
+}
+
+std::vector<KurtLobeSetup> kurtLobesForMaterial(const Material& material, const std::vector<ParamSpec>& specs,
+                                                const ParamValues& values, int budget, double xi0) {
+    const double materialM = std::clamp(double(material.alpha), 0.01, 1.0);
+    double mx = valueOf(specs, values, "mx", 0.0f), my = valueOf(specs, values, "my", 0.0f);
+    double r0 = valueOf(specs, values, "r0", -1.0f);
+    double shadow = valueOf(specs, values, "shadow_alpha", 0.0f);
+    std::vector<KurtLobeSetup> lobes(1);
+    lobes[0].lobe = {1.0, std::max(r0, 0.0), mx > 0.0 ? mx : materialM, my > 0.0 ? my : materialM, shadow};
+    lobes[0].useMaterialF0 = r0 < 0.0;
+    double ks2 = valueOf(specs, values, "lobe2_ks", 0.0f);
+    if (ks2 > 0.0) {
+        KurtLobeSetup second = lobes[0];
+        second.lobe.ks = ks2;
+        second.lobe.mx = valueOf(specs, values, "lobe2_mx", 0.3f);
+        second.lobe.my = valueOf(specs, values, "lobe2_my", 0.3f);
+        lobes.push_back(second);
+    }
+    if (budget > 0)
+        for (KurtLobeSetup& l : lobes) l.pattern = selectPatternForBudget(l.lobe.mx, l.lobe.my, xi0, budget);
+    return lobes;
+}
+
+KurtIblResources::KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns)
+    : specs_(std::move(specs)), withPatterns_(withPatterns) {}
+
+void KurtIblResources::prepare(const ParamValues& values, const Scene& scene) {
+    const int budget = withPatterns_ ? int(valueOf(specs_, values, "samples", 14.0f)) : 0;
+    const double xi0 = valueOf(specs_, values, "xi0", 0.2f);
+    // Everything the buffers depend on; equal keys skip the rebuild (patterns change only with the parameters).
+    std::vector<float> key;
+    for (const ParamSpec& s : specs_) key.push_back(paramOr(values, s));
+    key.push_back(float(scene.materials.size()));
+    for (const Material& m : scene.materials) key.push_back(m.alpha);
+    if (key == key_ && materials_) return;
+    key_ = key;
+
+    std::vector<glm::ivec4> materialRecords;
+    std::vector<glm::vec4> lobeRecords, halfVectors;
+    std::vector<Material> materials = scene.materials;
+    if (materials.empty()) materials.emplace_back();
+    for (const Material& material : materials) {
+        std::vector<KurtLobeSetup> lobes = kurtLobesForMaterial(material, specs_, values, budget, xi0);
+        materialRecords.push_back({int(lobeRecords.size() / 3), int(lobes.size()), 0, 0});
+        for (const KurtLobeSetup& l : lobes) {
+            lobeRecords.push_back({float(l.lobe.mx), float(l.lobe.my), float(l.lobe.ks), float(l.lobe.alpha)});
+            float r0 = l.useMaterialF0 ? -1.0f : float(l.lobe.r0);
+            lobeRecords.push_back({r0, r0, r0, 0.0f});
+            lobeRecords.push_back({float(halfVectors.size()), float(l.pattern.size()), float(l.pattern.pdfConstant),
+                                   float(l.pattern.params.xi0)});
+            for (const glm::dvec3& h : l.pattern.halfVectors) halfVectors.push_back({glm::vec3(h), 0.0f});
+        }
+    }
+    if (halfVectors.empty()) halfVectors.push_back(glm::vec4(0, 0, 1, 0));
+    materials_ = gl::createBuffer(GLsizeiptr(materialRecords.size() * sizeof(glm::ivec4)), materialRecords.data());
+    lobes_ = gl::createBuffer(GLsizeiptr(lobeRecords.size() * sizeof(glm::vec4)), lobeRecords.data());
+    halfVectors_ = gl::createBuffer(GLsizeiptr(halfVectors.size() * sizeof(glm::vec4)), halfVectors.data());
+    ++uploads_;
+}
+
+void KurtIblResources::bind() {
+    if (!materials_) return;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, materials_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, lobes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 18, halfVectors_.id());
+}
+
+}  // namespace glimmer::ibl
