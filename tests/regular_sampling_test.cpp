@@ -26,17 +26,28 @@ glm::dvec3 viewAt(double thetaDeg, double phiDeg) {
 // --- Sec. 5: Figure 4 ----------------------------------------------------------------------------------------
 
 TEST(RegularSamplingPattern, Figure4CountsUnderTheDocumentedReading) {
-    // Hand count: s1 = pole + circles at s1 (n0 = 6) and 2 s1 (Eq. 13: 2 floor(6 sin(2s)/(2 sin s) + 1/2) = 12
-    // while cos(s) > 11/12) -> 19 = Fig. 4. s2 = circles at s2, 2 s2, 3 s2 with n0 = 4: 4 + 8 + 12 = 24
-    // (Fig. 4 states 30; see docs-draft/regular_sampling.md).
-    for (double m : {0.05, 0.1, 0.3, 0.6}) {
+    // Hand count, RingRule::Arc (nc = 3, xi0 = 0.1): s1 = pole + circles at s1 (n0 = 6) and 2 s1
+    // (6 + 2 pi (sin 2s - sin s) / sin s = 6 + 2 pi (2 cos s - 1) ~ 12.28 -> 12) -> 19, as in Fig. 4.
+    // s2 = circles at s2 (n0 = 4), 2 s2 (~10.28 -> 10), 3 s2 (~16.57 -> 16) -> 30, as in Fig. 4.
+    for (double m : {0.05, 0.1, 0.3}) {
         RegularPattern s1 = generateRegularPattern({m, m, 0.1, 3, RingSpacing::S1});
         RegularPattern s2 = generateRegularPattern({m, m, 0.1, 3, RingSpacing::S2});
         EXPECT_EQ(s1.size(), 19) << "m=" << m;
         EXPECT_EQ(s1.ringCounts, (std::vector<int>{1, 6, 12})) << "m=" << m;
-        EXPECT_EQ(s2.size(), 24) << "m=" << m;
+        EXPECT_EQ(s2.size(), 30) << "m=" << m;
+        EXPECT_EQ(s2.ringCounts, (std::vector<int>{4, 10, 16})) << "m=" << m;
+    }
+    // The literal Eq. 13 (ratio of sines): 19 with s1, but 4 + 8 + 12 = 24 with s2.
+    for (double m : {0.05, 0.1, 0.3, 0.6}) {
+        RegularPattern s1 = generateRegularPattern({m, m, 0.1, 3, RingSpacing::S1, RingRule::Eq13});
+        RegularPattern s2 = generateRegularPattern({m, m, 0.1, 3, RingSpacing::S2, RingRule::Eq13});
+        EXPECT_EQ(s1.ringCounts, (std::vector<int>{1, 6, 12})) << "m=" << m;
         EXPECT_EQ(s2.ringCounts, (std::vector<int>{4, 8, 12})) << "m=" << m;
     }
+    // Fig. 8: the isotropic material mx = my = 0.1 "approximated with 14 samples" (xi0 = 0.2): s2 with nc = 2,
+    // 4 + 10, is reachable only under RingRule::Arc.
+    EXPECT_EQ(selectPatternForBudget(0.1, 0.1, 0.2, 14).size(), 14);
+    EXPECT_NE(selectPatternForBudget(0.1, 0.1, 0.2, 14, 24, RingRule::Eq13).size(), 14);
 }
 
 TEST(RegularSamplingPattern, RingGeometryFollowsEq11To13) {
@@ -58,6 +69,9 @@ TEST(RegularSamplingPattern, RingGeometryFollowsEq11To13) {
     EXPECT_EQ(ringSampleCount(4, std::asin(0.5), std::asin(0.2)), 10);
     EXPECT_EQ(ringSampleCount(6, 0.3, 0.3), 6);
     EXPECT_EQ(ringSampleCount(4, 0.3, 0.3), 4);
+    // Arc rule: n0 + 2 pi (sin(theta_i) - sin(theta_0)) / sin(s): 4 + 2 pi * 0.3 / 0.2 = 13.42 -> 14.
+    EXPECT_EQ(ringSampleCountArc(4, std::asin(0.5), std::asin(0.2), std::asin(0.2)), 14);
+    EXPECT_EQ(ringSampleCountArc(6, 0.3, 0.3, 0.3), 6);
 }
 
 TEST(RegularSamplingPattern, AnisotropicPatternsAreSymmetricAndRejectBelowXi0) {
@@ -84,7 +98,7 @@ TEST(RegularSamplingPattern, AnisotropicPatternsAreSymmetricAndRejectBelowXi0) {
         double s = tmax / (params.nc + (s1 ? 1 : 2));
         for (int k = s1 ? 0 : 1; k <= (s1 ? params.nc - 1 : params.nc); ++k, ++ringIndex) {
             if (k == 0) { EXPECT_EQ(p.ringCounts[ringIndex], 1); continue; }
-            int n = ringSampleCount(s1 ? 6 : 4, k * s, s);
+            int n = ringSampleCountArc(s1 ? 6 : 4, k * s, s, s);
             double best = -1.0;
             int bestCount = 0;
             for (double offset : {0.0, 0.5}) {
@@ -107,7 +121,7 @@ TEST(RegularSamplingPattern, IsotropicPatternsRejectNothing) {
     RegularPattern p = generateRegularPattern({0.15, 0.15, 0.01, 6, RingSpacing::S1});
     int expected = 1;
     double s = p.thetaMax / 7.0;
-    for (int k = 1; k <= 5; ++k) expected += ringSampleCount(6, k * s, s);
+    for (int k = 1; k <= 5; ++k) expected += ringSampleCountArc(6, k * s, s, s);
     EXPECT_EQ(p.size(), expected);
 }
 

@@ -30,6 +30,7 @@ std::vector<ParamSpec> kurtMaterialParams() {
 
 std::vector<KurtLobeSetup> kurtLobesForMaterial(const Material& material, const std::vector<ParamSpec>& specs,
                                                 const ParamValues& values, int budget, double xi0) {
+    const RingRule rule = valueOf(specs, values, "ring_rule", 0.0f) > 0.5f ? RingRule::Eq13 : RingRule::Arc;
     const double materialM = std::clamp(double(material.alpha), 0.01, 1.0);
     double mx = valueOf(specs, values, "mx", 0.0f), my = valueOf(specs, values, "my", 0.0f);
     double r0 = valueOf(specs, values, "r0", -1.0f);
@@ -46,7 +47,7 @@ std::vector<KurtLobeSetup> kurtLobesForMaterial(const Material& material, const 
         lobes.push_back(second);
     }
     if (budget > 0)
-        for (KurtLobeSetup& l : lobes) l.pattern = selectPatternForBudget(l.lobe.mx, l.lobe.my, xi0, budget);
+        for (KurtLobeSetup& l : lobes) l.pattern = selectPatternForBudget(l.lobe.mx, l.lobe.my, xi0, budget, 24, rule);
     return lobes;
 }
 

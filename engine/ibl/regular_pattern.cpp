@@ -44,6 +44,11 @@ int ringSampleCount(int n0, double thetaI, double theta0) {
     return 2 * int(std::floor(n0 * std::sin(thetaI) / (2.0 * std::sin(theta0)) + 0.5));
 }
 
+int ringSampleCountArc(int n0, double thetaI, double theta0, double spacing) {
+    double n = n0 + 2.0 * kPi * (std::sin(thetaI) - std::sin(theta0)) / std::sin(spacing);
+    return 2 * int(std::floor(n / 2.0 + 0.5));
+}
+
 RegularPattern generateRegularPattern(const PatternParams& params) {
     if (params.nc < 1) throw Error("regular pattern: nc must be >= 1, got " + std::to_string(params.nc));
     if (!(params.xi0 > 0.0 && params.xi0 < 1.0))
@@ -67,7 +72,8 @@ RegularPattern generateRegularPattern(const PatternParams& params) {
             continue;
         }
         double theta = k * spacing;
-        int n = ringSampleCount(n0, theta, theta0);   // Eq. 13
+        int n = params.rule == RingRule::Arc ? ringSampleCountArc(n0, theta, theta0, spacing)
+                                             : ringSampleCount(n0, theta, theta0);   // Eq. 13
         // Anisotropic extension: reject q < xi0 and keep the better of the ring and its half-offset twin
         // (highest sum of q over the kept samples). Isotropic rings lie inside theta_max, so nothing is rejected
         // and both variants tie: the unshifted ring is kept.
@@ -85,13 +91,13 @@ RegularPattern generateRegularPattern(const PatternParams& params) {
     return pattern;
 }
 
-RegularPattern selectPatternForBudget(double mx, double my, double xi0, int budget, int maxCircles) {
+RegularPattern selectPatternForBudget(double mx, double my, double xi0, int budget, int maxCircles, RingRule rule) {
     if (budget < 1) throw Error("regular pattern: sample budget must be >= 1, got " + std::to_string(budget));
     RegularPattern best;
     bool have = false;
     for (int nc = 1; nc <= maxCircles; ++nc) {
         for (RingSpacing spacing : {RingSpacing::S1, RingSpacing::S2}) {
-            RegularPattern candidate = generateRegularPattern({mx, my, xi0, nc, spacing});
+            RegularPattern candidate = generateRegularPattern({mx, my, xi0, nc, spacing, rule});
             if (!have) { best = candidate; have = true; continue; }
             int dc = std::abs(candidate.size() - budget), db = std::abs(best.size() - budget);
             if (dc < db || (dc == db && candidate.size() < best.size())) best = candidate;

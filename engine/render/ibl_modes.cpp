@@ -34,6 +34,8 @@ static IblMode regularMode() {
         {"xi0", 0.2f, 0.001f, 0.9f, "density threshold xi0 of the pattern (Eq. 11) and of anisotropic rejection", {}, false,
          true},
         {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the per-sample MIP level of Eq. 16"},
+        {"ring_rule", 0.0f, 0.0f, 1.0f, "samples per circle: arc (reproduces Fig. 4's counts) or eq13 (literal)",
+         {"arc", "eq13"}},
     });
     return {"regular",
             "Regular sampling of the MIP-mapped environment (Kurt BRDF)",
