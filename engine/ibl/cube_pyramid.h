@@ -1,0 +1,35 @@
+// MIP pyramids of cube maps with the filters of Sec. 3 / Table 1 of "Real-time Rendering of Glossy Materials with
+// Regular Sampling" (CGI 2014): box 2x2, Gaussian 4x4 and Gaussian 6x6 (shaders/ibl/cube_pyramid.comp). Used to
+// measure Table 1 and meant for the per-object environment maps of Sec. 3 (not implemented, see
+// docs-draft/regular_sampling.md). Cubes are RGBA16F with a full mip chain.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+
+namespace glimmer::ibl {
+
+enum class PyramidFilter { Box2 = 2, Gauss4 = 4, Gauss6 = 6 };
+PyramidFilter parsePyramidFilter(const std::string& name);   // box | gauss4 | gauss6; Error otherwise
+const char* pyramidFilterName(PyramidFilter filter);
+
+class CubePyramidBuilder {
+public:
+    explicit CubePyramidBuilder(const std::filesystem::path& shaderRoot);
+    // Fills levels 1.. of `cube` (RGBA16F, faceSize x faceSize at level 0) from level 0.
+    void build(GLuint cube, int faceSize, PyramidFilter filter);
+
+private:
+    gl::Program program_;
+};
+
+// An RGBA16F cube with a full mip chain.
+gl::Texture createPyramidCube(int faceSize);
+
+// CPU reference of one level step for one face (RGBA floats, row-major): the same taps and edge clamping.
+std::vector<float> downsampleCubeFaceReference(const std::vector<float>& face, int size, PyramidFilter filter);
+
+}  // namespace glimmer::ibl
