@@ -133,14 +133,14 @@ TEST(RegularSamplingGpu, PatternsAreRebuiltOnlyWhenParametersChange) {
     scene.materials[0].alpha = 0.1f;
     scene.materials[1].alpha = 0.3f;
     ParamValues values;
-    resources.prepare(values, scene);
-    resources.prepare(values, scene);
+    resources.prepare(values, scene, 0);
+    resources.prepare(values, scene, 0);
     EXPECT_EQ(resources.uploads(), 1);
     values["samples"] = 30.0f;
-    resources.prepare(values, scene);
+    resources.prepare(values, scene, 0);
     EXPECT_EQ(resources.uploads(), 2);
     scene.materials[1].alpha = 0.2f;   // a material edit
-    resources.prepare(values, scene);
+    resources.prepare(values, scene, 0);
     EXPECT_EQ(resources.uploads(), 3);
     // Per material: each material's lobe takes its own roughness unless ibl.mx / ibl.my override it.
     auto a = ibl::kurtLobesForMaterial(scene.materials[0], specs, values, 30, 0.2);
@@ -155,6 +155,26 @@ TEST(RegularSamplingGpu, PatternsAreRebuiltOnlyWhenParametersChange) {
     EXPECT_DOUBLE_EQ(c[0].lobe.mx, 0.25f);
     EXPECT_DOUBLE_EQ(c[0].lobe.my, 0.1f);
     EXPECT_DOUBLE_EQ(c[1].lobe.ks, 0.5f);
+
+    // ibl.pyramid: the environment copy is re-filtered when the filter or the environment changes, not otherwise.
+    specs.push_back({"pyramid", 0.0f, 0.0f, 3.0f, "", {"source", "box", "gauss4", "gauss6"}});
+    ibl::KurtIblResources filtered(specs, true);
+    gl::Texture source = ibl::createPyramidCube(16, GL_RGBA32F);
+    const float grey[4] = {0.5f, 0.5f, 0.5f, 1.0f};
+    glClearTexImage(source.id(), 0, GL_RGBA, GL_FLOAT, grey);
+    filtered.prepare(values, scene, source.id());
+    EXPECT_EQ(filtered.pyramidBuilds(), 0) << "pyramid=source reads the environment's own chain";
+    values["pyramid"] = 3.0f;
+    filtered.prepare(values, scene, source.id());
+    filtered.prepare(values, scene, source.id());
+    EXPECT_EQ(filtered.pyramidBuilds(), 1);
+    values["pyramid"] = 1.0f;
+    filtered.prepare(values, scene, source.id());
+    EXPECT_EQ(filtered.pyramidBuilds(), 2);
+    const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    glClearTexImage(source.id(), 0, GL_RGBA, GL_FLOAT, white);   // the environment changed in place
+    filtered.prepare(values, scene, source.id());
+    EXPECT_EQ(filtered.pyramidBuilds(), 3);
 }
 
 // Equirectangular HDR sky: dim gradient plus small bright discs (2-10 degrees, intensity ratios up to 1:3000),

@@ -20,9 +20,12 @@ struct Scene;
 class GlintMethodResources {
 public:
     virtual ~GlintMethodResources() = default;
-    // Optional: runs before bind() with the current parameter values of the method/mode and the scene, so
-    // resources that depend on them (IBL sample patterns per material) can rebuild when they change.
-    virtual void prepare(const ParamValues& values, const Scene& scene) { (void)values; (void)scene; }
+    // Optional: runs before bind() with the current parameter values of the method/mode, the scene and the
+    // environment's source cube (0 when none), so resources that depend on them (IBL sample patterns per material,
+    // filtered copies of the environment) can rebuild when they change.
+    virtual void prepare(const ParamValues& values, const Scene& scene, unsigned environmentSource) {
+        (void)values; (void)scene; (void)environmentSource;
+    }
     virtual void bind() = 0;
 };
 

@@ -23,14 +23,17 @@ const char* pyramidFilterName(PyramidFilter filter) {
     return "?";
 }
 
-CubePyramidBuilder::CubePyramidBuilder(const std::filesystem::path& shaderRoot)
-    : program_(shaderRoot, {"ibl/cube_pyramid", {{GL_COMPUTE_SHADER, "ibl/cube_pyramid.comp"}}}) {}
+CubePyramidBuilder::CubePyramidBuilder(const std::filesystem::path& shaderRoot, GLenum format)
+    : program_(shaderRoot, {"ibl/cube_pyramid",
+                            {{GL_COMPUTE_SHADER, "ibl/cube_pyramid.comp"}},
+                            {format == GL_RGBA32F ? "PYRAMID_FORMAT rgba32f" : "PYRAMID_FORMAT rgba16f"}}),
+      format_(format) {}
 
-gl::Texture createPyramidCube(int faceSize) {
+gl::Texture createPyramidCube(int faceSize, GLenum format) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
     int levels = 1 + int(std::floor(std::log2(double(faceSize))));
-    glTextureStorage2D(id, levels, GL_RGBA16F, faceSize, faceSize);
+    glTextureStorage2D(id, levels, format, faceSize, faceSize);
     return gl::Texture(id);
 }
 
@@ -40,8 +43,8 @@ void CubePyramidBuilder::build(GLuint cube, int faceSize, PyramidFilter filter) 
     int levels = 1 + int(std::floor(std::log2(double(faceSize))));
     for (int level = 1; level < levels; ++level) {
         int size = std::max(1, faceSize >> level);
-        glBindImageTexture(0, cube, level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-        glBindImageTexture(1, cube, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(0, cube, level - 1, GL_TRUE, 0, GL_READ_ONLY, format_);
+        glBindImageTexture(1, cube, level, GL_TRUE, 0, GL_WRITE_ONLY, format_);
         glDispatchCompute(GLuint((size + 7) / 8), GLuint((size + 7) / 8), 6);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

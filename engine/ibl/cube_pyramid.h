@@ -18,16 +18,18 @@ const char* pyramidFilterName(PyramidFilter filter);
 
 class CubePyramidBuilder {
 public:
-    explicit CubePyramidBuilder(const std::filesystem::path& shaderRoot);
+    // format: GL_RGBA16F (per-object maps) or GL_RGBA32F (filtered copies of the environment source).
+    explicit CubePyramidBuilder(const std::filesystem::path& shaderRoot, GLenum format = GL_RGBA16F);
     // Fills levels 1.. of `cube` (RGBA16F, faceSize x faceSize at level 0) from level 0.
     void build(GLuint cube, int faceSize, PyramidFilter filter);
 
 private:
     gl::Program program_;
+    GLenum format_;
 };
 
-// An RGBA16F cube with a full mip chain.
-gl::Texture createPyramidCube(int faceSize);
+// A cube with a full mip chain.
+gl::Texture createPyramidCube(int faceSize, GLenum format = GL_RGBA16F);
 
 // CPU reference of one level step for one face (RGBA floats, row-major): the same taps and edge clamping.
 std::vector<float> downsampleCubeFaceReference(const std::vector<float>& face, int size, PyramidFilter filter);

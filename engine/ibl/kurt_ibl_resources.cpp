@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/files.h"
 #include "scene/scene.h"
 
 namespace glimmer::ibl {
@@ -51,10 +52,31 @@ std::vector<KurtLobeSetup> kurtLobesForMaterial(const Material& material, const 
     return lobes;
 }
 
-KurtIblResources::KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns)
-    : specs_(std::move(specs)), withPatterns_(withPatterns) {}
+KurtIblResources::KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns, std::filesystem::path shaderRoot)
+    : specs_(std::move(specs)),
+      shaderRoot_(shaderRoot.empty() ? defaultShaderDir() : std::move(shaderRoot)),
+      withPatterns_(withPatterns) {}
 
-void KurtIblResources::prepare(const ParamValues& values, const Scene& scene) {
+void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource) {
+    const int pyramid = int(valueOf(specs_, values, "pyramid", 0.0f) + 0.5f);   // 0 source, 1 box, 2 gauss4, 3 gauss6
+    if (pyramid > 0 && environmentSource != 0) {
+        GLint size = 0;
+        glGetTextureLevelParameteriv(environmentSource, 0, GL_TEXTURE_WIDTH, &size);
+        // The source id alone may be reused by GL after an environment change; the key also samples its texels.
+        float probe[4] = {0, 0, 0, 0};
+        glGetTextureSubImage(environmentSource, 0, size / 3, size / 5, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof(probe), probe);
+        std::vector<float> key = {float(environmentSource), float(size), float(pyramid), probe[0], probe[1], probe[2]};
+        if (key != pyramidKey_ || !filteredEnvironment_) {
+            pyramidKey_ = key;
+            if (!pyramidBuilder_) pyramidBuilder_ = std::make_unique<CubePyramidBuilder>(shaderRoot_, GL_RGBA32F);
+            filteredEnvironment_ = createPyramidCube(size, GL_RGBA32F);
+            glCopyImageSubData(environmentSource, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, filteredEnvironment_.id(),
+                               GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, size, size, 6);
+            const PyramidFilter filters[] = {PyramidFilter::Box2, PyramidFilter::Gauss4, PyramidFilter::Gauss6};
+            pyramidBuilder_->build(filteredEnvironment_.id(), size, filters[std::min(pyramid, 3) - 1]);
+            ++pyramidBuilds_;
+        }
+    }
     const int budget = withPatterns_ ? int(valueOf(specs_, values, "samples", 14.0f)) : 0;
     const double xi0 = valueOf(specs_, values, "xi0", 0.2f);
     // Everything the buffers depend on; equal keys skip the rebuild (patterns change only with the parameters).
@@ -93,6 +115,7 @@ void KurtIblResources::bind() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, materials_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, lobes_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 18, halfVectors_.id());
+    glBindTextureUnit(16, filteredEnvironment_ ? filteredEnvironment_.id() : 0);
 }
 
 }  // namespace glimmer::ibl

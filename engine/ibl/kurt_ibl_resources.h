@@ -5,6 +5,8 @@
 //   binding 17: per lobe  vec4(mx, my, ks, shadow alpha), vec4(r0 rgb or -1 = material F0, 0),
 //                         vec4(first half vector, count, pdf constant (Eq. 18), xi0)
 //   binding 18: vec4 half vectors (shading frame), all patterns back to back.
+//   texture unit 16: with ibl.pyramid = box | gauss4 | gauss6, a copy of the environment's source cube whose MIP
+//   pyramid is rebuilt with that filter (Sec. 3), read instead of envRadiance's box chain.
 // Material parameters: Beckmann m = material alpha unless ibl.mx / ibl.my override it, r0 = the metalness-workflow
 // F0 unless ibl.r0 >= 0, one lobe plus an optional second (ibl.lobe2_*), shadowing exponent ibl.shadow_alpha.
 #pragma once
@@ -14,6 +16,7 @@
 
 #include "core/params.h"
 #include "gl/handles.h"
+#include "ibl/cube_pyramid.h"
 #include "ibl/kurt_brdf.h"
 #include "ibl/regular_pattern.h"
 #include "render/ibl_modes.h"
@@ -41,17 +44,26 @@ std::vector<KurtLobeSetup> kurtLobesForMaterial(const Material& material, const 
 class KurtIblResources : public IblModeResources {
 public:
     // withPatterns: build regular patterns (mode `regular`, params "samples" and "xi0").
-    KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns);
-    void prepare(const ParamValues& values, const Scene& scene) override;
+    KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns, std::filesystem::path shaderRoot = {});
+    void prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource) override;
     void bind() override;
     int uploads() const { return uploads_; }   // how many times the buffers were rebuilt (tests)
 
 private:
     std::vector<ParamSpec> specs_;
+    std::filesystem::path shaderRoot_;
     bool withPatterns_;
     std::vector<float> key_;   // inputs of the last upload
     int uploads_ = 0;
     gl::Buffer materials_, lobes_, halfVectors_;
+    // ibl.pyramid != source: the environment's level 0 copied and re-filtered (Sec. 3 filters), texture unit 16.
+    std::unique_ptr<CubePyramidBuilder> pyramidBuilder_;
+    gl::Texture filteredEnvironment_;
+    std::vector<float> pyramidKey_;
+    int pyramidBuilds_ = 0;
+
+public:
+    int pyramidBuilds() const { return pyramidBuilds_; }
 };
 
 }  // namespace glimmer::ibl

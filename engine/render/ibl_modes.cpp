@@ -36,6 +36,8 @@ static IblMode regularMode() {
         {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the per-sample MIP level of Eq. 16"},
         {"ring_rule", 0.0f, 0.0f, 1.0f, "samples per circle: arc (reproduces Fig. 4's counts) or eq13 (literal)",
          {"arc", "eq13"}},
+        {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
+         {"source", "box", "gauss4", "gauss6"}},
     });
     return {"regular",
             "Regular sampling of the MIP-mapped environment (Kurt BRDF)",
@@ -53,6 +55,8 @@ static IblMode fisMode() {
         {"samples", 14.0f, 1.0f, 1024.0f, "importance samples per pixel (Hammersley set, the same for all pixels)", {},
          true},
         {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the filtered-importance-sampling MIP level (which includes +1)"},
+        {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
+         {"source", "box", "gauss4", "gauss6"}},
     });
     return {"fis",
             "Filtered importance sampling (Colbert & Krivanek, Kurt BRDF)",

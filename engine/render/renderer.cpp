@@ -247,7 +247,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
     if (iblResources_) {
-        iblResources_->prepare(settings_.iblModeValues(ibl.id), scene);
+        iblResources_->prepare(settings_.iblModeValues(ibl.id), scene,
+                               environment_.enabled() ? environment_.sourceCube() : 0);
         iblResources_->bind();
     }
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));

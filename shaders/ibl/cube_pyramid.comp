@@ -5,8 +5,11 @@
 // Deviation: taps outside the face are clamped to the face edge (no filtering across cube faces).
 // CPU reference: engine/ibl/cube_pyramid.cpp downsampleCubeFaceReference.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0, rgba16f) uniform readonly imageCube u_source;
-layout(binding = 1, rgba16f) uniform writeonly imageCube u_destination;
+#ifndef PYRAMID_FORMAT
+#define PYRAMID_FORMAT rgba16f
+#endif
+layout(binding = 0, PYRAMID_FORMAT) uniform readonly imageCube u_source;
+layout(binding = 1, PYRAMID_FORMAT) uniform writeonly imageCube u_destination;
 layout(location = 0) uniform int u_kernel;   // 2, 4 or 6
 
 float tapWeight(int k) {

@@ -25,7 +25,7 @@ vec3 fisLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0) {
         float omegaS = 1.0 / (float(n) * pdf);
         float omegaP = texelArea / (d * d * d);
         float lod = max(0.5 * log2(omegaS / omegaP) + 1.0 + IBL_MIP_BIAS, 0.0);
-        sum += envRadiance(wiWorld, lod) * kurtLobe(wi, wo, lobe, r0) * (wi.z / pdf);   // Eq. 9
+        sum += kurtEnvironment(wiWorld, lod) * kurtLobe(wi, wo, lobe, r0) * (wi.z / pdf);   // Eq. 9
     }
     return lobe.roughness.z * sum / float(n);
 }

@@ -12,6 +12,16 @@ layout(std430, binding = 16) readonly buffer KurtMaterialBlock { ivec4 u_kurtMat
 layout(std430, binding = 17) readonly buffer KurtLobeBlock { KurtLobeGpu u_kurtLobes[]; };
 layout(std430, binding = 18) readonly buffer KurtPatternBlock { vec4 u_kurtHalfVectors[]; };
 
+// With ibl.pyramid = box | gauss4 | gauss6: the environment re-filtered with that pyramid (Sec. 3), else the
+// environment's own box chain (envRadiance). Both apply env.intensity and env.rotation.
+layout(binding = 16) uniform samplerCube u_kurtEnvironment;
+vec3 kurtEnvironment(vec3 worldDir, float lod) {
+#ifdef IBL_PYRAMID
+    if (IBL_PYRAMID > 0.5) return u_envParams.x * textureLod(u_kurtEnvironment, envDirection(worldDir), lod).rgb;
+#endif
+    return envRadiance(worldDir, lod);
+}
+
 // (first lobe, lobe count) of a material; out-of-range ids use material 0.
 ivec2 kurtMaterialLobes(int materialId) {
     int id = (materialId >= 0 && materialId < u_kurtMaterials.length()) ? materialId : 0;

@@ -26,7 +26,7 @@ vec3 regularLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0
     float pdfConstant = lobe.pattern.z, xi0 = lobe.pattern.w;
     if (count <= 0 || pdfConstant <= 0.0) return vec3(0.0);
     float area = regularLobeArea(wo, lobe.roughness.x, lobe.roughness.y, xi0);
-    float faceSize = float(textureSize(u_envSource, 0).x);
+    float faceSize = float(textureSize(u_envSource, 0).x);   // the filtered copy has the same size
     float texelsPerSampleBase = area * faceSize * faceSize / (4.0 * float(count));   // Eq. 16, A N / (4 n)
     vec3 sum = vec3(0.0);
     for (int i = 0; i < count; ++i) {
@@ -39,7 +39,7 @@ vec3 regularLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0
         float texels = texelsPerSampleBase * cubeDistance(envDirection(wiWorld)) / max(ih, 1e-4);
         float lod = max(0.5 * log2(max(texels, 1e-12)) + IBL_MIP_BIAS, 0.0);   // log4
         float pdf = pdfConstant / (4.0 * ih);   // Eq. 17-18
-        sum += envRadiance(wiWorld, lod) * kurtLobe(wi, wo, lobe, r0) * (wi.z / pdf);
+        sum += kurtEnvironment(wiWorld, lod) * kurtLobe(wi, wo, lobe, r0) * (wi.z / pdf);
     }
     return lobe.roughness.z * sum / float(count);
 }
