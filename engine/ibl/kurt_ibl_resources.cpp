@@ -73,7 +73,10 @@ void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GL
             glCopyImageSubData(environmentSource, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, filteredEnvironment_.id(),
                                GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, size, size, 6);
             const PyramidFilter filters[] = {PyramidFilter::Box2, PyramidFilter::Gauss4, PyramidFilter::Gauss6};
+            GLint current = 0;   // prepare() runs with the lighting program bound: keep it bound
+            glGetIntegerv(GL_CURRENT_PROGRAM, &current);
             pyramidBuilder_->build(filteredEnvironment_.id(), size, filters[std::min(pyramid, 3) - 1]);
+            glUseProgram(GLuint(current));
             ++pyramidBuilds_;
         }
     }
