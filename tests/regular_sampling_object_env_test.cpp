@@ -6,9 +6,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/files.h"
+#include "core/image_io.h"
 #include "ibl/object_environment.h"
 #include "platform/context.h"
 #include "render/environment_reference.h"
+#include "render/aov.h"
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "render/settings.h"
 #include "scene/scene_loader.h"
 
 namespace glimmer::ibl {
@@ -80,6 +85,88 @@ TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange
                                         scene.instances[glossy].transform;
     EXPECT_EQ(maps.update(scene, {glossy}), 1);
     EXPECT_NEAR(maps.centroid(0).z, centre.z + 0.5f, 1e-4f);
+}
+
+// Through the lighting pass: with ibl.object_maps = 1 the glossy sphere reflects a red neighbour on the side it
+// stands, and the reflection moves when the neighbour moves; without object maps there is no red reflection.
+TEST(RegularSamplingObjectEnvironment, ReflectionFollowsAMovedNeighbour) {
+    auto context = createHeadlessContext(Backend::Egl);
+    Scene scene = loadScene("sphere");
+    uint32_t glossy = 0;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i)
+        if (scene.materials[scene.instances[i].material].name == "sphere") glossy = i;
+    const uint32_t sphereMaterial = scene.instances[glossy].material;
+    scene.materials[sphereMaterial].metallic = 1.0f;
+    scene.materials[sphereMaterial].glinty = false;
+    Material red;
+    red.name = "red";
+    red.baseColor = {1.0f, 0.0f, 0.0f, 1.0f};
+    red.metallic = 0.0f;
+    scene.materials.push_back(red);
+    const glm::vec3 centre = instanceCentroid(scene, scene.instances[glossy]);
+    Instance neighbour = scene.instances[glossy];
+    neighbour.material = uint32_t(scene.materials.size() - 1);
+    auto placeNeighbour = [&](float x) {
+        return glm::translate(glm::mat4(1.0f), centre + glm::vec3(x, 0.0f, 0.3f)) *
+               glm::scale(glm::mat4(1.0f), glm::vec3(0.6f)) * glm::translate(glm::mat4(1.0f), -centre);
+    };
+    neighbour.transform = placeNeighbour(1.6f);
+    scene.instances.push_back(neighbour);
+    // Sun from above and in front, so both neighbour positions are lit alike in the per-object maps.
+    for (Light& light : scene.lights) {
+        light.type = LightType::Directional;
+        light.vector = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+    }
+    const Camera camera = scene.cameras.front();
+    const int size = 96;
+
+    // Number of distinctly red pixels of the glossy sphere, left and right of the image centre.
+    auto measure = [&](bool objectMaps, glm::vec2& leftRight) {
+        RenderSettings settings;
+        settings.ibl = "regular";
+        settings.apply("light.intensity=0");
+        settings.apply("ibl.mx=0.05");
+        settings.apply("ibl.my=0.05");
+        settings.apply(std::string("ibl.object_maps=") + (objectMaps ? "1" : "0"));
+        settings.apply("ibl.object_map_size=64");
+        GpuScene gpuScene(scene);
+        Renderer renderer(defaultShaderDir(), settings);
+        renderer.render(scene, gpuScene, camera, size, size);
+        std::vector<float> hdr = renderer.readHdr();
+        static int image = 0;
+        std::filesystem::path dir = std::filesystem::path(GLIMMER_TEST_OUTPUT_DIR) / "regular_sampling";
+        std::filesystem::create_directories(dir);
+        writeExr(dir / ("object_maps_" + std::to_string(image++) + ".exr"), hdr.data(), size, size);
+        RenderSettings materialView = settings;
+        materialView.debugView = findAov("material").viewId;
+        renderer.setSettings(materialView);
+        renderer.render(scene, gpuScene, camera, size, size);
+        std::vector<float> ids = renderer.readHdr();
+        glm::dvec2 sum(0.0), count(0.0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                size_t i = (size_t(y) * size + x) * 4;
+                if (ids[i + 3] <= 0.0f || std::lround(ids[i + 2]) != long(sphereMaterial)) continue;
+                int side = x < size / 2 ? 0 : 1;
+                sum[side] += reddish({hdr[i], hdr[i + 1], hdr[i + 2]}) ? 1.0 : 0.0;
+                count[side] += 1.0;
+            }
+        ASSERT_GT(count.x, 50.0);
+        ASSERT_GT(count.y, 50.0);
+        leftRight = glm::vec2(sum);
+    };
+    glm::vec2 withMaps, without, moved;
+    measure(true, withMaps);
+    measure(false, without);
+    scene.instances.back().transform = placeNeighbour(-1.6f);
+    measure(true, moved);
+    std::printf("red sphere pixels left/right: object maps %.0f %.0f, none %.0f %.0f, moved %.0f %.0f\n", withMaps.x,
+                withMaps.y, without.x, without.y, moved.x, moved.y);
+    EXPECT_GT(withMaps.y, 10.0f) << "the neighbour at +x is reflected on the right";
+    EXPECT_EQ(withMaps.x, 0.0f);
+    EXPECT_GT(moved.x, 10.0f) << "moved to -x, its reflection moves to the left";
+    EXPECT_EQ(moved.y, 0.0f);
+    EXPECT_EQ(without.x + without.y, 0.0f) << "the scene's environment has no neighbour in it";
 }
 
 }  // namespace

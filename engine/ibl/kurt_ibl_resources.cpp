@@ -80,6 +80,32 @@ void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GL
             ++pyramidBuilds_;
         }
     }
+    // Sec. 3 per-object maps.
+    std::vector<int> slots(std::max<size_t>(scene.materials.size(), 1), -1);
+    objectMapCount_ = 0;
+    if (valueOf(specs_, values, "object_maps", 0.0f) > 0.5f) {
+        const int faceSize = int(valueOf(specs_, values, "object_map_size", 128.0f));
+        const PyramidFilter filters[] = {PyramidFilter::Box2, PyramidFilter::Box2, PyramidFilter::Gauss4,
+                                         PyramidFilter::Gauss6};
+        const PyramidFilter filter = filters[std::clamp(pyramid, 0, 3)];
+        std::vector<float> key = {float(faceSize), float(int(filter))};
+        if (key != objectMapsKey_ || !objectMaps_) {
+            objectMaps_ = std::make_unique<ObjectEnvironmentMaps>(shaderRoot_, faceSize, filter);
+            objectMapsKey_ = key;
+        }
+        std::vector<uint32_t> glossy;
+        for (uint32_t i = 0; i < scene.instances.size() && int(glossy.size()) < kMaxObjectMaps; ++i) {
+            uint32_t material = scene.instances[i].material;
+            if (material >= scene.materials.size() || scene.materials[material].metallic < 0.5f) continue;
+            if (slots[material] >= 0) continue;
+            slots[material] = int(glossy.size());
+            glossy.push_back(i);
+        }
+        objectMaps_->update(scene, glossy);   // re-renders only the maps whose scene inputs changed
+        objectMapCount_ = int(glossy.size());
+    }
+    objectSlots_ = gl::createBuffer(GLsizeiptr(slots.size() * sizeof(int)), slots.data());
+
     const int budget = withPatterns_ ? int(valueOf(specs_, values, "samples", 14.0f)) : 0;
     const double xi0 = valueOf(specs_, values, "xi0", 0.2f);
     // Everything the buffers depend on; equal keys skip the rebuild (patterns change only with the parameters).
@@ -119,6 +145,9 @@ void KurtIblResources::bind() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, lobes_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 18, halfVectors_.id());
     glBindTextureUnit(16, filteredEnvironment_ ? filteredEnvironment_.id() : 0);
+    if (objectSlots_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 19, objectSlots_.id());
+    for (int i = 0; i < kMaxObjectMaps; ++i)
+        glBindTextureUnit(GLuint(17 + i), i < objectMapCount_ ? objectMaps_->cube(size_t(i)) : 0);
 }
 
 }  // namespace glimmer::ibl

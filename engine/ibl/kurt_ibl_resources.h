@@ -7,6 +7,8 @@
 //   binding 18: vec4 half vectors (shading frame), all patterns back to back.
 //   texture unit 16: with ibl.pyramid = box | gauss4 | gauss6, a copy of the environment's source cube whose MIP
 //   pyramid is rebuilt with that filter (Sec. 3), read instead of envRadiance's box chain.
+//   texture units 17-23 + binding 19: with ibl.object_maps = 1, the per-object maps of Sec. 3 (one per metallic
+//   instance, at most 7; a material shared by several such instances uses the first one's map).
 // Material parameters: Beckmann m = material alpha unless ibl.mx / ibl.my override it, r0 = the metalness-workflow
 // F0 unless ibl.r0 >= 0, one lobe plus an optional second (ibl.lobe2_*), shadowing exponent ibl.shadow_alpha.
 #pragma once
@@ -18,6 +20,7 @@
 #include "gl/handles.h"
 #include "ibl/cube_pyramid.h"
 #include "ibl/kurt_brdf.h"
+#include "ibl/object_environment.h"
 #include "ibl/regular_pattern.h"
 #include "render/ibl_modes.h"
 
@@ -61,9 +64,16 @@ private:
     gl::Texture filteredEnvironment_;
     std::vector<float> pyramidKey_;
     int pyramidBuilds_ = 0;
+    // ibl.object_maps: one cube per metallic instance (Sec. 3), texture units 17-23; binding 19: per material the
+    // map slot (-1: the environment).
+    std::unique_ptr<ObjectEnvironmentMaps> objectMaps_;
+    std::vector<float> objectMapsKey_;
+    gl::Buffer objectSlots_;
+    int objectMapCount_ = 0;
 
 public:
     int pyramidBuilds() const { return pyramidBuilds_; }
+    static constexpr int kMaxObjectMaps = 7;
 };
 
 }  // namespace glimmer::ibl

@@ -38,6 +38,9 @@ static IblMode regularMode() {
          {"arc", "eq13"}},
         {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
          {"source", "box", "gauss4", "gauss6"}},
+        {"object_maps", 0.0f, 0.0f, 1.0f, "1: metallic objects reflect their own cube map rendered at their centroid (Sec. 3)",
+         {}, true},
+        {"object_map_size", 128.0f, 16.0f, 1024.0f, "face size of the per-object maps", {}, true},
     });
     return {"regular",
             "Regular sampling of the MIP-mapped environment (Kurt BRDF)",
@@ -57,6 +60,9 @@ static IblMode fisMode() {
         {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the filtered-importance-sampling MIP level (which includes +1)"},
         {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
          {"source", "box", "gauss4", "gauss6"}},
+        {"object_maps", 0.0f, 0.0f, 1.0f, "1: metallic objects reflect their own cube map rendered at their centroid (Sec. 3)",
+         {}, true},
+        {"object_map_size", 128.0f, 16.0f, 1024.0f, "face size of the per-object maps", {}, true},
     });
     return {"fis",
             "Filtered importance sampling (Colbert & Krivanek, Kurt BRDF)",

@@ -129,6 +129,10 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
 void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                       bool measurePasses) {
     prepareEnvironment(scene);
+    // IBL-mode resources may render (per-object environment maps), so they update before any state of this frame.
+    if (iblResources_)
+        iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
+                               environment_.enabled() ? environment_.sourceCube() : 0);
     targets_.resize(width, height);
     TimerFrame* timerFrame = asyncGpuTimers_ && !measurePasses ? &asyncTimers_[frameIndex_ % kTimerFrames] : nullptr;
     if (!timerFrame) timings_.clear();
@@ -246,11 +250,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     }
     lightingProgram_.use();
     if (methodResources_) methodResources_->bind();
-    if (iblResources_) {
-        iblResources_->prepare(settings_.iblModeValues(ibl.id), scene,
-                               environment_.enabled() ? environment_.sourceCube() : 0);
-        iblResources_->bind();
-    }
+    if (iblResources_) iblResources_->bind();
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
     glBindTextureUnit(5, targets_.depthTexture());

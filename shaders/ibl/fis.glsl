@@ -9,7 +9,7 @@
 vec3 fisLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0) {
     int n = int(IBL_SAMPLES);
     float mx = lobe.roughness.x, my = lobe.roughness.y;
-    float faceSize = float(textureSize(u_envSource, 0).x);
+    float faceSize = kurtEnvironmentFaceSize();
     float texelArea = 4.0 / (faceSize * faceSize);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < n; ++i) {
@@ -21,7 +21,7 @@ vec3 fisLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0) {
         if (wi.z <= 0.0 || oh <= 0.0) continue;
         float pdf = kurtHalfVectorPdf(h, mx, my) / (4.0 * oh);   // Eq. 10
         vec3 wiWorld = shadingToWorld * wi;
-        float d = cubeDistance(envDirection(wiWorld));
+        float d = cubeDistance(kurtMapDirection(wiWorld));
         float omegaS = 1.0 / (float(n) * pdf);
         float omegaP = texelArea / (d * d * d);
         float lod = max(0.5 * log2(omegaS / omegaP) + 1.0 + IBL_MIP_BIAS, 0.0);
@@ -36,6 +36,7 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
     if (wo.z <= 0.0) return radiance;
     mat3 shadingToWorld = transpose(worldToShading);
     ivec2 lobes = kurtMaterialLobes(s.materialId);
+    kurtSelectObjectMap(s.materialId);
     for (int l = 0; l < lobes.y; ++l) {
         KurtLobeGpu lobe = u_kurtLobes[lobes.x + l];
         radiance += fisLobeRadiance(lobe, wo, shadingToWorld, kurtR0(lobe, f0));

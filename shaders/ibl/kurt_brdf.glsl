@@ -14,8 +14,50 @@ layout(std430, binding = 18) readonly buffer KurtPatternBlock { vec4 u_kurtHalfV
 
 // With ibl.pyramid = box | gauss4 | gauss6: the environment re-filtered with that pyramid (Sec. 3), else the
 // environment's own box chain (envRadiance). Both apply env.intensity and env.rotation.
+// With ibl.object_maps = 1, pixels of a material with a per-object map (Sec. 3; world frame, rendered radiance)
+// read that map instead; kurtSelectObjectMap picks it once per pixel.
 layout(binding = 16) uniform samplerCube u_kurtEnvironment;
+layout(binding = 17) uniform samplerCube u_kurtObjectMap0;
+layout(binding = 18) uniform samplerCube u_kurtObjectMap1;
+layout(binding = 19) uniform samplerCube u_kurtObjectMap2;
+layout(binding = 20) uniform samplerCube u_kurtObjectMap3;
+layout(binding = 21) uniform samplerCube u_kurtObjectMap4;
+layout(binding = 22) uniform samplerCube u_kurtObjectMap5;
+layout(binding = 23) uniform samplerCube u_kurtObjectMap6;
+layout(std430, binding = 19) readonly buffer KurtObjectMapBlock { int u_kurtObjectMapSlot[]; };
+int g_kurtObjectMap = -1;
+
+void kurtSelectObjectMap(int materialId) {
+    g_kurtObjectMap = -1;
+#ifdef IBL_OBJECT_MAPS
+    if (IBL_OBJECT_MAPS > 0.5 && materialId >= 0 && materialId < u_kurtObjectMapSlot.length())
+        g_kurtObjectMap = u_kurtObjectMapSlot[materialId];
+#endif
+}
+
+vec3 kurtObjectMapLookup(vec3 d, float lod) {
+    switch (g_kurtObjectMap) {   // one branch per unit: sampler arrays need dynamically uniform indices
+        case 0: return textureLod(u_kurtObjectMap0, d, lod).rgb;
+        case 1: return textureLod(u_kurtObjectMap1, d, lod).rgb;
+        case 2: return textureLod(u_kurtObjectMap2, d, lod).rgb;
+        case 3: return textureLod(u_kurtObjectMap3, d, lod).rgb;
+        case 4: return textureLod(u_kurtObjectMap4, d, lod).rgb;
+        case 5: return textureLod(u_kurtObjectMap5, d, lod).rgb;
+        default: return textureLod(u_kurtObjectMap6, d, lod).rgb;
+    }
+}
+
+// Face size of the map kurtEnvironment reads (N of Eq. 16).
+float kurtEnvironmentFaceSize() {
+    if (g_kurtObjectMap >= 0) return float(textureSize(u_kurtObjectMap0, 0).x);   // all object maps share a size
+    return float(textureSize(u_envSource, 0).x);
+}
+
+// Direction in the frame of the map kurtEnvironment reads (object maps are world-aligned; for Eq. 16's cube term).
+vec3 kurtMapDirection(vec3 worldDir) { return g_kurtObjectMap >= 0 ? worldDir : envDirection(worldDir); }
+
 vec3 kurtEnvironment(vec3 worldDir, float lod) {
+    if (g_kurtObjectMap >= 0) return kurtObjectMapLookup(worldDir, lod);
 #ifdef IBL_PYRAMID
     if (IBL_PYRAMID > 0.5) return u_envParams.x * textureLod(u_kurtEnvironment, envDirection(worldDir), lod).rgb;
 #endif

@@ -26,7 +26,7 @@ vec3 regularLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0
     float pdfConstant = lobe.pattern.z, xi0 = lobe.pattern.w;
     if (count <= 0 || pdfConstant <= 0.0) return vec3(0.0);
     float area = regularLobeArea(wo, lobe.roughness.x, lobe.roughness.y, xi0);
-    float faceSize = float(textureSize(u_envSource, 0).x);   // the filtered copy has the same size
+    float faceSize = kurtEnvironmentFaceSize();
     float texelsPerSampleBase = area * faceSize * faceSize / (4.0 * float(count));   // Eq. 16, A N / (4 n)
     vec3 sum = vec3(0.0);
     for (int i = 0; i < count; ++i) {
@@ -36,7 +36,7 @@ vec3 regularLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0
         if (wi.z <= 0.0 || ih <= 0.0) continue;
         vec3 wiWorld = shadingToWorld * wi;
         // Eq. 16: cube distortion |wi| / |wi|_inf (in the map's frame) and half-vector term 1 / (wi.h).
-        float texels = texelsPerSampleBase * cubeDistance(envDirection(wiWorld)) / max(ih, 1e-4);
+        float texels = texelsPerSampleBase * cubeDistance(kurtMapDirection(wiWorld)) / max(ih, 1e-4);
         float lod = max(0.5 * log2(max(texels, 1e-12)) + IBL_MIP_BIAS, 0.0);   // log4
         float pdf = pdfConstant / (4.0 * ih);   // Eq. 17-18
         sum += kurtEnvironment(wiWorld, lod) * kurtLobe(wi, wo, lobe, r0) * (wi.z / pdf);
@@ -50,6 +50,7 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
     if (wo.z <= 0.0) return radiance;
     mat3 shadingToWorld = transpose(worldToShading);
     ivec2 lobes = kurtMaterialLobes(s.materialId);
+    kurtSelectObjectMap(s.materialId);
     for (int l = 0; l < lobes.y; ++l) {
         KurtLobeGpu lobe = u_kurtLobes[lobes.x + l];
         radiance += regularLobeRadiance(lobe, wo, shadingToWorld, kurtR0(lobe, f0));
