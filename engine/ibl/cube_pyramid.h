@@ -1,7 +1,6 @@
 // MIP pyramids of cube maps with the filters of Sec. 3 / Table 1 of "Real-time Rendering of Glossy Materials with
-// Regular Sampling" (CGI 2014): box 2x2, Gaussian 4x4 and Gaussian 6x6 (shaders/ibl/cube_pyramid.comp). Used to
-// measure Table 1 and meant for the per-object environment maps of Sec. 3 (not implemented, see
-// docs-draft/regular_sampling.md). Cubes are RGBA16F with a full mip chain.
+// Regular Sampling" (CGI 2014): box 2x2, Gaussian 4x4 and Gaussian 6x6 (shaders/ibl/cube_pyramid.comp). Used for
+// Table 1, the per-object environment maps of Sec. 3 (RGBA16F) and ibl.pyramid's re-filtered environment (RGBA32F).
 #pragma once
 #include <filesystem>
 #include <string>

@@ -3,8 +3,7 @@
 // a MIP pyramid built with the chosen filter (box 2x2, Gaussian 4x4 / 6x6; ibl/cube_pyramid.h). A map is
 // re-rendered only when something it depends on changed: the object's transform (its centroid), or any other
 // instance, material or light of the scene.
-// Status: the maps are built, kept up to date and tested, but the lighting pass does not read them yet (every
-// object still reflects the scene's one environment); see docs-draft/regular_sampling.md.
+// Used by the regular and fis IBL modes with ibl.object_maps = 1 (engine/ibl/kurt_ibl_resources.cpp).
 #pragma once
 #include <glm/glm.hpp>
 

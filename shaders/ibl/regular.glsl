@@ -3,8 +3,8 @@
 // (engine/ibl/regular_pattern.cpp); this file evaluates the paper's EvaluateSpecularLobe per lobe:
 // per-pixel ellipse area (Eq. 14-15), per-sample MIP level (Eq. 16), constant pdf (Eq. 17-18), Eq. 9 sum.
 // CPU reference: engine/ibl/ibl_estimators.cpp regularLobe.
-// Deviations: the environment is the scene's one map (the per-object maps of Sec. 3 are not implemented); the
-// diffuse term kd/pi * irradiance uses the SH irradiance (envDiffuse); glinty materials get the smooth Kurt lobe.
+// Environment: the scene's map (box chain or re-filtered, ibl.pyramid) or the object's own map (ibl.object_maps,
+// Sec. 3), see kurtEnvironment in ibl/kurt_brdf.glsl. Deviations: the diffuse term kd/pi * irradiance uses the SH irradiance (envDiffuse); glinty materials get the smooth Kurt lobe.
 #include "ibl/kurt_brdf.glsl"
 
 // Eq. 14-15 and A = pi u v: the lobe's elliptical cross-section at unit distance, from the extreme half vectors
