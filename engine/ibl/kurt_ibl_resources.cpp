@@ -104,7 +104,10 @@ void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GL
         objectMaps_->update(scene, glossy);   // re-renders only the maps whose scene inputs changed
         objectMapCount_ = int(glossy.size());
     }
-    objectSlots_ = gl::createBuffer(GLsizeiptr(slots.size() * sizeof(int)), slots.data());
+    if (slots != objectSlotValues_ || !objectSlots_) {
+        objectSlots_ = gl::createBuffer(GLsizeiptr(slots.size() * sizeof(int)), slots.data());
+        objectSlotValues_ = slots;
+    }
 
     const int budget = withPatterns_ ? int(valueOf(specs_, values, "samples", 14.0f)) : 0;
     const double xi0 = valueOf(specs_, values, "xi0", 0.2f);

@@ -69,6 +69,7 @@ private:
     std::unique_ptr<ObjectEnvironmentMaps> objectMaps_;
     std::vector<float> objectMapsKey_;
     gl::Buffer objectSlots_;
+    std::vector<int> objectSlotValues_;
     int objectMapCount_ = 0;
 
 public:
