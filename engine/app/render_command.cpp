@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "app/commands.h"
 #include "app/common_options.h"
+#include "bench/compare.h"
 #include "core/cli.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -20,10 +22,13 @@ static const char* kRenderHelp =
     "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
     "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
     "                      --out FILE.png|FILE.exr\n"
+    "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
     "  --env: environment map (default: the scene's, else the procedural sky). --ibl: how it is integrated\n"
-    "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n";
+    "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n"
+    "  --compare renders smooth and each listed method side by side, labelled; each --crop (render pixels, top-left\n"
+    "  origin) adds a nearest-neighbour zoomed inset below every tile.\n";
 
 int runRenderCommand(const std::vector<std::string>& argList) {
     ArgReader args("render", argList);
@@ -41,7 +46,19 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     bool printStats = args.flag("--stats");
     request.frames = args.intValue("--frames", 1, 1, 100000);
     auto out = args.value("--out");
+    std::optional<std::string> compare = args.value("--compare");
+    std::vector<bench::CropRect> crops;
+    for (const std::string& text : args.values("--crop")) crops.push_back(bench::parseCrop(text));
     args.finish();
+    if (!crops.empty() && !compare) throw UsageError("--crop: only with --compare");
+    std::vector<std::string> compareMethods;
+    if (compare) {
+        std::stringstream list(*compare);
+        for (std::string id; std::getline(list, id, ',');)
+            if (!id.empty()) compareMethods.push_back(id);
+        if (compareMethods.empty()) throw UsageError("--compare: expected a comma-separated list of methods");
+        bench::comparisonMethods(compareMethods);  // unknown ids fail before any rendering
+    }
     if (!out) throw UsageError("render: --out FILE.png|FILE.exr is required");
     std::filesystem::path outPath(*out);
     ImageFormat format = imageFormatForPath(outPath, "--out");
@@ -58,6 +75,17 @@ int runRenderCommand(const std::vector<std::string>& argList) {
         if (!existed) std::filesystem::remove(outPath, ec);  // a failed render must not leave an empty file
     }
 
+    if (compare) {
+        if (format != ImageFormat::Png) throw UsageError("--compare: --out must be a .png file");
+        bench::CompareGrid grid = bench::renderComparison(request, compareMethods, crops);
+        std::vector<uint8_t> bottomUp(grid.rgba.size());
+        size_t row = size_t(grid.width) * 4;
+        for (int y = 0; y < grid.height; ++y)
+            std::copy_n(&grid.rgba[size_t(grid.height - 1 - y) * row], row, &bottomUp[size_t(y) * row]);
+        writePng(outPath, bottomUp.data(), grid.width, grid.height);
+        std::printf("%s\n", outPath.string().c_str());
+        return 0;
+    }
     RenderResult result = renderOffscreen(request);
     if (format == ImageFormat::Exr) writeExr(outPath, result.hdr.data(), result.width, result.height);
     else writePng(outPath, result.display.data(), result.width, result.height);

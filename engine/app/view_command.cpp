@@ -1,6 +1,7 @@
 // glimmer view: the walkthrough window (engine/app/walkthrough.cpp). `--frames N --screenshot FILE` renders N
 // frames and exits (tests run it under xvfb-run); with --hide-ui that image equals `glimmer render`.
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/commands.h"
 #include "app/common_options.h"
@@ -8,16 +9,18 @@
 #include "core/cli.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "glints/methods.h"
 
 namespace glimmer {
 
 static const char* kViewHelp =
     "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
     "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--aov NAME]\n"
-    "                    [--shader-dir DIR] [--no-vsync] [--hide-ui]\n"
+    "                    [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
     "  WASD move, Q/E down/up, Shift faster, wheel speed, right mouse button (or C) looks around,\n"
     "  1-9 scene cameras, P walkthrough, M/N/I cycle method/debug view/IBL mode, V vsync, H hide UI,\n"
+    "  B split-screen comparison (Shift+B: next right-hand method; drag the divider with the left button),\n"
     "  Monte Carlo IBL modes accumulate samples while the camera is still.\n"
     "  arrows + Enter drive the panel, F5 reload shaders, F12 screenshot (Shift+F12: EXR), Esc quit.\n";
 
@@ -34,6 +37,14 @@ int runViewCommand(const std::vector<std::string>& argList) {
     options.screenshot = args.value("--screenshot");
     options.hideUi = args.flag("--hide-ui");
     options.vsync = !args.flag("--no-vsync");
+    if (auto split = args.value("--split")) options.splitMethod = findGlintMethod(*split).id;
+    if (auto at = args.value("--split-at")) {
+        char* end = nullptr;
+        options.splitPosition = std::strtof(at->c_str(), &end);
+        if (at->empty() || *end != '\0' || !(options.splitPosition >= 0.0f && options.splitPosition <= 1.0f))
+            throw UsageError("--split-at: '" + *at + "' is not a number in [0, 1]");
+        if (!options.splitMethod) throw UsageError("--split-at: only with --split METHOD");
+    }
     args.finish();
     if (options.screenshot) imageFormatForPath(*options.screenshot, "--screenshot");
     if (options.screenshot && options.frameLimit == 0)

@@ -33,6 +33,7 @@ constexpr float kLookRadiansPerPixel = 0.0025f;
 constexpr float kShiftSpeedFactor = 4.0f;
 constexpr float kWheelSpeedFactor = 1.2f;
 constexpr double kMessageSeconds = 4.0;
+constexpr float kDividerGrabPixels = 6.0f;
 
 // The window image: the renderer's display image with the UI drawn over it. Rendering the overlay into our own
 // texture (not the window) keeps screenshots independent of the window system.
@@ -109,6 +110,11 @@ public:
                 log::warn("view: no shader hot reload: ", e.what());
             }
         }
+        if (options.splitMethod) {
+            splitMethod_ = findGlintMethod(*options.splitMethod).id;
+            splitFraction_ = std::clamp(options.splitPosition, 0.0f, 1.0f);
+            split_ = true;
+        }
         fly_.set(start);
         for (const Camera& c : baseScene_.cameras) controls_.cameraNames.push_back(c.name);
         controls_.moveSpeed = std::clamp(glm::length(start.target - start.position) * 0.5f, 0.05f, 20.0f);
@@ -171,6 +177,7 @@ private:
         }
         Stopwatch clock;
         std::vector<std::string> rebuilt = renderer_->reloadChangedPrograms(files);
+        if (splitRenderer_) splitRenderer_->reloadChangedPrograms(files);
         ++settingsVersion_;   // a rebuilt shader starts a new accumulation
         try {
             if (uiRenderer_->reloadIfChanged(files)) rebuilt.push_back("ui");
@@ -221,6 +228,11 @@ private:
             case GLFW_KEY_P: toggleWalkthrough(); break;
             case GLFW_KEY_M: cycleMethod(shift ? -1 : 1); break;
             case GLFW_KEY_N: cycleDebugView(shift ? -1 : 1); break;
+            case GLFW_KEY_B:
+                if (shift) cycleSplitMethod();
+                else split_ = !split_;
+                if (split_) showMessage("split: " + renderer_->settings().method + " | " + splitMethodId());
+                break;
             case GLFW_KEY_I: cycleIblMode(shift ? -1 : 1); break;
             default:
                 if (key.key >= GLFW_KEY_1 && key.key <= GLFW_KEY_9) jumpToCamera(key.key - GLFW_KEY_1);
@@ -239,6 +251,16 @@ private:
             input.mousePressed = events.leftPressed;
             input.rightPressed = events.rightPressed;
             input.scroll = float(events.scrollY);
+            // The split divider: grab it within a few pixels (outside the panel), drag while the button is held.
+            float dividerX = splitFraction_ * float(width);
+            if (split_ && events.leftPressed && std::abs(input.mouse.x - dividerX) <= kDividerGrabPixels &&
+                !(showUi() && ui_.mouseOverUi()))
+                draggingDivider_ = true;
+            if (!input.mouseDown) draggingDivider_ = false;
+            if (draggingDivider_) {
+                splitFraction_ = std::clamp(input.mouse.x / float(std::max(width, 1)), 0.0f, 1.0f);
+                input.mousePressed = input.mouseDown = false;  // the panel must not see the drag
+            }
         }
         return input;
     }
@@ -322,6 +344,23 @@ private:
         next.method = methods[size_t(((current + step) % n + n) % n)].id;
         applySettings(next);
         showMessage("method " + renderer_->settings().method);
+    }
+
+    // The right-hand method of the split: the one chosen, else the first method differing from the left one.
+    std::string splitMethodId() const {
+        if (!splitMethod_.empty()) return splitMethod_;
+        for (const GlintMethod& m : glintMethods())
+            if (m.id != renderer_->settings().method) return m.id;
+        return renderer_->settings().method;
+    }
+
+    void cycleSplitMethod() {
+        const auto& methods = glintMethods();
+        int n = int(methods.size()), current = 0;
+        for (int i = 0; i < n; ++i)
+            if (methods[size_t(i)].id == splitMethodId()) current = i;
+        splitMethod_ = methods[size_t((current + 1) % n)].id;
+        split_ = true;
     }
 
     void cycleIblMode(int step) {
@@ -411,8 +450,20 @@ private:
             if (result.reloadShaders) reloadShaders({}, true);
             if (result.screenshot) pendingScreenshot_ = 1;
             drawStats(width, height, statsHeight, margin, line);
+            if (split_) drawSplitLabels(width, margin, line);
         }
         ui_.end();
+    }
+
+    // Method names on both sides of the divider, at the top.
+    void drawSplitLabels(int width, float margin, float line) {
+        float dividerX = splitFraction_ * float(width);
+        std::string left = renderer_->settings().method, right = splitMethodId();
+        float leftW = float(ui::textWidth(left, ui_.scale())), rightW = float(ui::textWidth(right, ui_.scale()));
+        ui_.box({dividerX - leftW - 2.0f * margin, margin, leftW + margin, line + margin}, {0, 0, 0, 200});
+        ui_.textAt({dividerX - leftW - 1.5f * margin, margin * 1.5f}, left, ui::palette::kHeading);
+        ui_.box({dividerX + margin, margin, rightW + margin, line + margin}, {0, 0, 0, 200});
+        ui_.textAt({dividerX + 1.5f * margin, margin * 1.5f}, right, ui::palette::kHeading);
     }
 
     void drawStats(int width, int height, float statsHeight, float margin, float line) {
@@ -470,6 +521,7 @@ private:
         present_.resize(width, height);
         glBlitNamedFramebuffer(renderer_->targets().displayFramebuffer(), present_.framebuffer(), 0, 0, width, height,
                                0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        if (split_) drawSplit(width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer());
         uiRenderer_->draw(ui_.drawList(), width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -479,6 +531,35 @@ private:
             writeScreenshot(nextScreenshotName(pendingScreenshot_ == 2 ? ".exr" : ".png"));
             pendingScreenshot_ = 0;
         }
+    }
+
+    // The right part of the split: a second renderer (same scene and camera, the left settings with the other
+    // method) blitted over the columns right of the divider, then a 2-pixel divider line. Costs a second frame.
+    void drawSplit(int width, int height) {
+        RenderSettings settings = renderer_->settings();
+        settings.method = splitMethodId();
+        try {
+            if (!splitRenderer_) {
+                splitRenderer_ = std::make_unique<Renderer>(renderer_->shaderRoot(), settings);
+                splitRenderer_->setAsyncGpuTimers(true);
+            }
+            splitRenderer_->setSettings(settings);
+        } catch (const std::exception& e) {
+            methodError_ = "split method " + settings.method + ": " + e.what();
+            split_ = false;
+            return;
+        }
+        splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
+        splitRenderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
+        int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
+        if (x < width)
+            glBlitNamedFramebuffer(splitRenderer_->targets().displayFramebuffer(), present_.framebuffer(), x, 0, width,
+                                   height, x, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(std::max(x - 1, 0), 0, 2, height);
+        glClearNamedFramebufferfv(present_.framebuffer(), GL_COLOR, 0, white);
+        glDisable(GL_SCISSOR_TEST);
     }
 
     std::string nextScreenshotName(const char* extension) {
@@ -509,6 +590,7 @@ private:
     GlfwWindow window_;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<Renderer> splitRenderer_;  // created on the first split frame
     std::unique_ptr<ui::UiRenderer> uiRenderer_;
     std::unique_ptr<FileWatcher> watcher_;
     PresentTarget present_;
@@ -527,6 +609,9 @@ private:
     double frameMs_ = 0.0, now_ = 0.0, messageUntil_ = 0.0;
     std::string message_, uiError_, methodError_;
     int pendingScreenshot_ = 0;
+    bool split_ = false, draggingDivider_ = false;
+    std::string splitMethod_;      // "" = first method differing from the left one
+    float splitFraction_ = 0.5f;
 };
 
 }  // namespace

@@ -14,6 +14,10 @@ struct ViewOptions {
     std::optional<std::string> screenshot;  // .png (window image) or .exr (HDR radiance / debug view)
     bool hideUi = false;
     bool vsync = true;
+    // Split-screen comparison (key B toggles, Shift+B cycles the right-hand method, drag the divider): the left
+    // part shows request.settings.method, the right part `splitMethod`, both rendered every frame.
+    std::optional<std::string> splitMethod;
+    float splitPosition = 0.5f;             // divider as a fraction of the width
 };
 
 int runWalkthroughWindow(const ViewOptions& options);

@@ -251,6 +251,23 @@ double priorJacobian(const glm::dvec3& h, const glm::dvec2& alpha, int ndf) {
     return 1.0 / (8.0 * alpha.x * alpha.y * v * v * v);
 }
 
+glm::dvec3 sampleSmoothNdfCos(const glm::dvec2& alpha, int ndf, double u1, double u2) {
+    // D(h) h.z dw = P22(slope) d(slope), and the slope distributions of GGX and Beckmann are stretch-invariant:
+    // draw the unit-roughness slope radius (Walter et al. 2007, Eq. 28 / 35 with alpha = 1), stretch by alpha.
+    double tan2 = ndf == kBeckmann ? -std::log(std::max(1.0 - u1, 1e-12)) : u1 / std::max(1.0 - u1, 1e-12);
+    double phi = 2.0 * kPi * u2, r = std::sqrt(tan2);
+    return glm::normalize(glm::dvec3(r * std::cos(phi) * alpha.x, r * std::sin(phi) * alpha.y, 1.0));
+}
+
+double defensivePriorPdf(const glm::dvec2& xa, const glm::dvec2& alpha, int ndf) {
+    // D(h) h.z / |J_T(h)|: 4 / pi for Beckmann (T carries D cos to the uniform disk), 8 h.z / (pi |M^T h|) for GGX.
+    if (glm::dot(xa - 0.5, xa - 0.5) >= 0.25) return 0.0;
+    if (ndf == kBeckmann) return 4.0 / kPi;
+    glm::dvec3 h = fromPrior(xa, alpha, ndf);
+    double v = glm::length(glm::dvec3(h.x / alpha.x, h.y / alpha.y, h.z));
+    return 8.0 * h.z / (kPi * v);
+}
+
 double defensiveProbability(const Params& params, const PixelSetup& px, int ndf, int level) {
     int side = params.neighbors == 16 ? 4 : 2;
     double sigma = params.microRoughness * std::sqrt(smoothD(glm::dvec3(0, 0, 1), px.alpha, ndf));
@@ -297,7 +314,11 @@ int blockTerms(const Params& params, const PixelSetup& px, int ndf, int q, int l
             glm::dvec2 ga = centre / extent;
             if (glm::dot(ga - 0.5, ga - 0.5) >= 0.25) continue;
             glm::dvec2 ds = proc.xs - (glm::dvec2(cellS) + p.spatial) / resS;
-            double spatial = std::exp(-0.5 * glm::dot(ds, invCov * ds));
+            // A term whose spatial Gaussian is below e^-50 is absent, as in the shader: float underflows where
+            // double does not, and the reservoir draws one number per present term, so both must agree on which
+            // terms exist for the CPU twin to follow the shader's random stream sample by sample.
+            double exponent = glm::dot(ds, invCov * ds);
+            double spatial = exponent < 100.0 ? std::exp(-0.5 * exponent) : 0.0;
             double w = roulette(p.roulette, levelWeight) * spatial * luminance(glintColor(p.hue, params.colorVariation));
             if (!(w > 0.0)) continue;
             double d = smoothD(fromPrior(ga, px.alpha, ndf), px.alpha, ndf);
@@ -359,13 +380,14 @@ HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& px, in
     glm::dvec2 extent = 1.0 / px.angularStretch;
     glm::dvec2 xPrime;
     if (rng.next() < defensiveProbability(params, px, ndf, level)) {
-        // Defensive branch: uniform in the disk U = the smooth NDF through T^-1.
-        double r = 0.5 * std::sqrt(rng.next()), phi = 2.0 * kPi * rng.next();
-        xPrime = (glm::dvec2(0.5) + r * glm::dvec2(std::cos(phi), std::sin(phi))) * extent;
+        // Defensive branch: the smooth NDF's D(h) h.z (for Beckmann the same as uniform in U).
+        double u1 = rng.next(), u2 = rng.next();
+        xPrime = toPrior(sampleSmoothNdfCos(px.alpha, ndf, u1, u2), px.alpha, ndf) * extent;
     } else {
         int side = params.neighbors == 16 ? 4 : 2;
         double resA = std::exp2(level);
-        glm::dvec2 xa = glm::dvec2(rng.next(), rng.next()) * extent;   // line 2 (over the square)
+        // Braces: list-initialisation evaluates left to right, as GLSL does (parentheses leave C++ the order).
+        glm::dvec2 xa = glm::dvec2{rng.next(), rng.next()} * extent;   // line 2 (over the square)
         glm::ivec2 a0 = glm::ivec2(glm::floor(xa * resA - (0.5 * side - 0.5)));
         SampleTerm terms[64];
         BlockGeometry block;
@@ -380,7 +402,7 @@ HalfVectorSample sampleHalfVector(const Params& params, const PixelSetup& px, in
         }
         if (chosen < 0) {
             // Empty block: uniform inside it (kept in the pdf).
-            xPrime = block.lo + glm::dvec2(rng.next(), rng.next()) * (block.hi - block.lo);
+            xPrime = block.lo + glm::dvec2{rng.next(), rng.next()} * (block.hi - block.lo);
         } else {
             const SampleTerm& t = terms[chosen];
             xPrime = {sampleTruncatedNormal(t.centre.x, t.sigma, block.lo.x, block.hi.x, rng.next()),
@@ -410,7 +432,7 @@ double samplePriorPdf(const Params& params, const PixelSetup& px, int ndf, const
             if (pLevel <= 0.0) continue;
             double levelWeight = pLevel * proc.weight;
             double rho = defensiveProbability(params, px, ndf, level);
-            double p = rho / (kPi * 0.25);
+            double p = rho * defensivePriorPdf(xa, px.alpha, ndf);
             double resA = std::exp2(level);
             glm::ivec2 cell = glm::ivec2(glm::floor(xPrime * resA));
             double offset = 0.5 * side - 0.5;

@@ -108,6 +108,10 @@ double samplePriorPdf(const Params& params, const PixelSetup& pixel, int ndf, co
 double sampleSolidAnglePdf(const Params& params, const PixelSetup& pixel, int ndf, const glm::dvec3& h);
 // |J_T|: prior area per solid angle at h (GGX 1 / (8 ax ay |M^T h|^3), Beckmann pi D cos / 4).
 double priorJacobian(const glm::dvec3& h, const glm::dvec2& alpha, int ndf);
+// The defensive branch: half vectors with density D(h) h.z over solid angle (anisotropic alpha), and that density
+// in prior space, D(h) h.z / |J_T(h)| at h = T^-1(xa) (0 outside U).
+glm::dvec3 sampleSmoothNdfCos(const glm::dvec2& alpha, int ndf, double u1, double u2);
+double defensivePriorPdf(const glm::dvec2& xa, const glm::dvec2& alpha, int ndf);
 // Probability of the defensive (smooth-NDF) branch at a level: the share of a lobe at the NDF peak that falls
 // outside the k-neighbourhood, at least 0.1.
 double defensiveProbability(const Params& params, const PixelSetup& pixel, int ndf, int level);

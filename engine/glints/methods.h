@@ -13,12 +13,20 @@
 
 namespace glimmer {
 
+struct Scene;
+
 // GPU resources a method needs besides its parameters (noise textures, tables). Created once per context when
 // the method is selected; bind() runs before every lighting pass. Methods use texture units 8-15 and
 // buffer bindings 8-15 (the renderer's own stay below 8).
 class GlintMethodResources {
 public:
     virtual ~GlintMethodResources() = default;
+    // Optional: runs before bind() with the current parameter values of the method/mode, the scene and the
+    // environment's source cube (0 when none), so resources that depend on them (IBL sample patterns per material,
+    // filtered copies of the environment) can rebuild when they change.
+    virtual void prepare(const ParamValues& values, const Scene& scene, unsigned environmentSource) {
+        (void)values; (void)scene; (void)environmentSource;
+    }
     virtual void bind() = 0;
     // Called before every lighting pass with the method's current parameter values (before bind()): methods
     // whose GPU data depend on parameters rebuild what changed here. Returns the passes that ran (name, wall ms)

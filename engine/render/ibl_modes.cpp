@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "ibl/kurt_ibl_resources.h"
 #include "glints/wang2020_environment.h"
 
 namespace glimmer {
@@ -35,9 +36,118 @@ static IblMode wang2020Mode() {
             createWang2020EnvironmentResources};
 }
 
+// Monte Carlo modes of issue 5: `seed` offsets the random streams so that two renders are independent (a
+// reference image must not share samples with the render it judges).
+static ParamSpec seedParam() {
+    return {"seed", 0.0f, 0.0f, 1e6f, "random stream offset: renders with different seeds are independent",
+            {}, true, false};
+}
+
+// Smooth-NDF importance sampling (shaders/ibl/ndf_is.glsl): the comparison baseline, any glint method.
+static IblMode ndfIsMode() {
+    return {"ndf-is",
+            "Monte Carlo, half vectors sampled from the smooth NDF",
+            "IBL_MODE_NDF_IS",
+            "ibl/ndf_is.glsl",
+            "Walter et al. 2007 (NDF sampling, Eq. 28-29, 35-36); the comparison of Kemppinen et al. 2025, Fig. 7",
+            {seedParam()},
+            true,
+            {},
+            nullptr};
+}
+
+// Glinty-NDF importance sampling (shaders/ibl/glint_is.glsl): Algorithm 2 of Kemppinen et al. 2025.
+static IblMode glintIsMode() {
+    return {"glint-is",
+            "Monte Carlo, half vectors sampled from the filtered glinty NDF",
+            "IBL_MODE_GLINT_IS",
+            "ibl/glint_is.glsl",
+            "Kemppinen et al. 2025, Evaluating and Sampling Glinty NDFs in Constant Time, Sec. 3.3.5, Algorithm 2",
+            {seedParam()},
+            true,
+            {"kemppinen2025"},
+            nullptr};
+}
+
+// Issue 7: "Real-time Rendering of Glossy Materials with Regular Sampling" (CGI 2014) and its two comparisons,
+// all on the Kurt et al. 2010 BRDF (engine/ibl/, shaders/ibl/kurt_brdf.glsl).
+static std::vector<ParamSpec> withKurtParams(std::vector<ParamSpec> own) {
+    std::vector<ParamSpec> all = ibl::kurtMaterialParams();
+    all.insert(all.end(), own.begin(), own.end());
+    return all;
+}
+
+static IblMode regularMode() {
+    std::vector<ParamSpec> params = withKurtParams({
+        {"samples", 14.0f, 1.0f, 512.0f, "sample budget: the regular pattern with the closest count is used", {}, true},
+        {"xi0", 0.2f, 0.001f, 0.9f, "density threshold xi0 of the pattern (Eq. 11) and of anisotropic rejection", {}, false,
+         true},
+        {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the per-sample MIP level of Eq. 16"},
+        {"ring_rule", 0.0f, 0.0f, 1.0f, "samples per circle: arc (reproduces Fig. 4's counts) or eq13 (literal)",
+         {"arc", "eq13"}},
+        {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
+         {"source", "box", "gauss4", "gauss6"}},
+        {"object_maps", 0.0f, 0.0f, 1.0f, "1: metallic objects reflect their own cube map rendered at their centroid (Sec. 3)",
+         {}, true},
+        {"object_map_size", 128.0f, 16.0f, 1024.0f, "face size of the per-object maps", {}, true},
+    });
+    return {"regular",
+            "Regular sampling of the MIP-mapped environment (Kurt BRDF)",
+            "IBL_MODE_REGULAR",
+            "ibl/regular.glsl",
+            "Real-time Rendering of Glossy Materials with Regular Sampling, CGI 2014 (Kurt et al. 2010 BRDF)",
+            params,
+            false,
+            {},
+            [params] { return std::make_unique<ibl::KurtIblResources>(params, true); }};
+}
+
+static IblMode fisMode() {
+    std::vector<ParamSpec> params = withKurtParams({
+        {"samples", 14.0f, 1.0f, 1024.0f, "importance samples per pixel (Hammersley set, the same for all pixels)", {},
+         true},
+        {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the filtered-importance-sampling MIP level (which includes +1)"},
+        {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
+         {"source", "box", "gauss4", "gauss6"}},
+        {"object_maps", 0.0f, 0.0f, 1.0f, "1: metallic objects reflect their own cube map rendered at their centroid (Sec. 3)",
+         {}, true},
+        {"object_map_size", 128.0f, 16.0f, 1024.0f, "face size of the per-object maps", {}, true},
+    });
+    return {"fis",
+            "Filtered importance sampling (Colbert & Krivanek, Kurt BRDF)",
+            "IBL_MODE_FIS",
+            "ibl/fis.glsl",
+            "Colbert & Krivanek 2007, GPU-Based Importance Sampling (GPU Gems 3, ch. 20); Kurt et al. 2010 sampling",
+            params,
+            false,
+            {},
+            [params] { return std::make_unique<ibl::KurtIblResources>(params, false); }};
+}
+
+static IblMode referenceMode() {
+    std::vector<ParamSpec> params = withKurtParams({
+        {"samples", 32.0f, 1.0f, 256.0f, "importance samples per pixel and frame (level-0 lookups, accumulated)", {},
+         true},
+    });
+    return {"reference",
+            "Monte Carlo reference (Kurt BRDF, accumulated)",
+            "IBL_MODE_REFERENCE",
+            "ibl/reference.glsl",
+            "Kurt et al. 2010 importance sampling (Eq. 6-7, pdf Eq. 10), unfiltered lookups",
+            params,
+            true,
+            {},
+            [params] { return std::make_unique<ibl::KurtIblResources>(params, false); }};
+}
+
 const std::vector<IblMode>& iblModes() {
     static const std::vector<IblMode> modes = {
         prefilteredMode(),
+        ndfIsMode(),
+        glintIsMode(),
+        regularMode(),
+        fisMode(),
+        referenceMode(),
         wang2020Mode(),
     };
     return modes;

@@ -1,5 +1,7 @@
 #include "render/offscreen.h"
 
+#include <ctime>
+
 #include "core/clock.h"
 #include "core/files.h"
 #include "core/log.h"
@@ -45,13 +47,21 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     gpuScene_->updateMaterialsAndLights(scene_);
     renderer_->setSettings(request.settings);
     applyEnvironment(request);
-    const Camera& camera = scene_.camera(request.camera);
+    const Camera& camera = request.cameraOverride ? *request.cameraOverride : scene_.camera(request.camera);
 
     // Monte Carlo IBL modes: each frame is the mean of `spp` estimates (sample 0 renders the G-buffer).
     const int samples = renderer_->accumulating() ? request.spp : 1;
-    std::vector<double> frameMs;
+    std::vector<double> frameMs, frameCpuMs;
+    // Process CPU time (every thread, llvmpipe's rasterizer workers included): on a software renderer sharing
+    // the machine with other work it is far steadier than the wall clock.
+    auto processCpuMs = [] {
+        timespec t{};
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+        return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+    };
     for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
         Stopwatch clock;
+        double cpuStart = processCpuMs();
         for (int sample = 0; sample < samples; ++sample) {
             renderer_->setSampleIndex(uint32_t(sample));
             renderer_->render(scene_, *gpuScene_, camera, request.width, request.height, sample + 1 == samples);
@@ -60,6 +70,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         }
         glFinish();
         frameMs.push_back(clock.elapsedMs());
+        frameCpuMs.push_back(processCpuMs() - cpuStart);
     }
     RenderResult result;
     result.width = request.width;
@@ -90,6 +101,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"aov", aovName},
         {"passes", passes},
         {"frame_ms", frameMs.back()},
+        {"frame_cpu_ms", frameCpuMs.back()},
         {"frames", frameMs.size()},
         {"scene_load_ms", sceneLoadMs_},
         {"program_build_ms", programBuildMs_},

@@ -18,6 +18,7 @@ namespace glimmer {
 struct RenderRequest {
     std::string scene = "plane90";     // built-in name or file path
     std::string camera;                // "" = the scene's first camera
+    std::optional<Camera> cameraOverride;  // when set, replaces `camera` (camera paths: bench --temporal)
     int width = 512, height = 512;
     Backend backend = Backend::Egl;
     RenderSettings settings;

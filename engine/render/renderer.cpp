@@ -129,6 +129,10 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
 void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                       bool measurePasses) {
     prepareEnvironment(scene);
+    // IBL-mode resources may render (per-object environment maps), so they update before any state of this frame.
+    if (iblResources_)
+        iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
+                               environment_.enabled() ? environment_.sourceCube() : 0);
     targets_.resize(width, height);
     TimerFrame* timerFrame = asyncGpuTimers_ && !measurePasses ? &asyncTimers_[frameIndex_ % kTimerFrames] : nullptr;
     if (!timerFrame) timings_.clear();

@@ -3,8 +3,9 @@
 // GlintPixel and the core). CPU twin: sampleHalfVector / samplePriorPdf in engine/glints/kemppinen2025_reference.
 //
 // One sample: a point process by triplanar weight; a level by lambda's roulette (lines 4-6); with probability
-// rho_l a defensive sample of the smooth NDF (uniform in U through T^-1: the compensation term, which the paper
-// leaves unsampled, would otherwise have no pdf where no explicit lobe reaches); otherwise x_a uniform over the
+// rho_l a defensive sample of the smooth NDF with density D(h) h.z (the compensation term, which the paper leaves
+// unsampled, would otherwise have no pdf where no explicit lobe reaches; D cos rather than uniform in U because for
+// GGX the uniform prior is not D cos, and D cos cancels the D(h) factor of every term of Eq. 11); otherwise x_a uniform over the
 // prior square (line 2; the square rather than the disk makes the block probabilities exact rectangles), the
 // reservoir over the terms of B(x_a) (lines 9-15, weights R N_s m_t(B) Luminance(c)) and a truncated Gaussian
 // inside B for the chosen term (line 14). Each term's lobe is the Gaussian centred on its point with
@@ -36,6 +37,24 @@ float kemppinenPriorJacobian(vec3 h, vec2 alpha, int ndf) {
     return 1.0 / (8.0 * alpha.x * alpha.y * v * v * v);
 }
 
+// Half vector with density D(h) h.z: D cos dw = P22(slope) d(slope), and the slope distributions of GGX and
+// Beckmann are stretch-invariant, so the unit-roughness slope radius (Walter et al. 2007, Eq. 28 / 35 with
+// alpha = 1) is stretched by alpha.
+vec3 kemppinenSampleSmoothNdfCos(vec2 alpha, int ndf, float u1, float u2) {
+    float tan2 = ndf == NDF_BECKMANN ? -log(max(1.0 - u1, 1e-12)) : u1 / max(1.0 - u1, 1e-12);
+    float phi = 2.0 * PI * u2, r = sqrt(tan2);
+    return normalize(vec3(r * cos(phi) * alpha.x, r * sin(phi) * alpha.y, 1.0));
+}
+
+// That density in prior space, D(h) h.z / |J_T(h)| at h = T^-1(xa): 4 / pi for Beckmann (T carries D cos to the
+// uniform disk), 8 h.z / (pi |M^T h|) for GGX.
+float kemppinenDefensivePriorPdf(vec2 xa, vec2 alpha, int ndf) {
+    if (ndf == NDF_BECKMANN) return 4.0 / PI;
+    vec3 h = kemppinenFromPrior(xa, alpha, ndf);
+    float v = length(vec3(h.xy / alpha, h.z));
+    return 8.0 * h.z / (PI * v);
+}
+
 // One explicit term of a block in the stretched angular space x_a'.
 struct KemppinenTerm {
     vec2 centre;
@@ -61,7 +80,10 @@ KemppinenTerm kemppinenBlockTerm(GlintPixel px, int ndf, KemppinenProcess proc, 
     if (dot(ga - 0.5, ga - 0.5) >= 0.25) return t;
     vec2 ds = proc.local[li] - vec2(offset) - p.spatial;
     vec3 invCovS = proc.invCovCell[li];
-    float spatial = exp(-0.5 * (ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z));
+    // Below e^-50 the term is absent (the CPU twin cuts at the same exponent: float underflows where double does
+    // not, and the reservoir draws one random number per present term).
+    float exponent = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z;
+    float spatial = exponent < 100.0 ? exp(-0.5 * exponent) : 0.0;
     vec3 c = kemppinenGlintColor(p.hue, px.colorVariation);
     t.weight = kemppinenRoulette(p.roulette, levelWeight) * spatial * dot(c, vec3(0.2126, 0.7152, 0.0722));
     float d = kemppinenSmoothD(kemppinenFromPrior(ga, px.alpha, ndf), px.alpha, ndf);
@@ -114,7 +136,7 @@ float kemppinenSamplePriorPdf(GlintPixel px, int ndf, vec2 xa) {
             if (pLevel <= 0.0) continue;
             float levelWeight = pLevel * proc.weight;
             float rho = kemppinenDefensiveProbability(px, ndf, level);
-            float p = rho / (0.25 * PI);
+            float p = rho * kemppinenDefensivePriorPdf(xa, px.alpha, ndf);
             float resA = exp2(float(level));
             ivec2 cell = ivec2(floor(xPrime * resA));
             float offset = 0.5 * float(side) - 0.5;
@@ -164,8 +186,8 @@ vec3 kemppinenSampleHalfVector(GlintPixel px, int ndf, inout uint rng, out float
     vec2 extent = 1.0 / px.angularStretch;
     vec2 xPrime;
     if (kemppinenRandom(rng) < kemppinenDefensiveProbability(px, ndf, level)) {
-        float r = 0.5 * sqrt(kemppinenRandom(rng)), phi = 2.0 * PI * kemppinenRandom(rng);
-        xPrime = (0.5 + r * vec2(cos(phi), sin(phi))) * extent;
+        float u1 = kemppinenRandom(rng), u2 = kemppinenRandom(rng);
+        xPrime = kemppinenToPrior(kemppinenSampleSmoothNdfCos(px.alpha, ndf, u1, u2), px.alpha, ndf) * extent;
     } else {
         int side = px.neighbourSide;
         float resA = exp2(float(level));

@@ -1,0 +1,65 @@
+// `glimmer bench --temporal`: frame-to-frame flicker of the glint term along a short camera path. Each frame's
+// glint AOV (D of the first light) is compared with the previous frame's, reprojected on the CPU with the depth
+// AOV and both cameras: flicker = mean |D_t - D_{t-1}(reprojected)| / mean D_t over the pixels visible in both.
+// A method whose glints stick to the surface scores near the reprojection baseline of smooth; one whose glints
+// pop or swim under motion scores higher.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "platform/context.h"
+#include "scene/camera.h"
+
+namespace glimmer::bench {
+
+// One frame's AOVs, bottom-up rows as read back from GL.
+struct GlintFrame {
+    Camera camera;
+    int width = 0, height = 0;
+    std::vector<float> glint;   // D of the first light, one value per pixel
+    std::vector<float> depth;   // distance to the camera (m)
+    std::vector<uint8_t> valid; // 1 where a surface was hit
+};
+
+struct FlickerMeasure {
+    double flicker = 0.0;        // mean |difference| / mean current value over matched pixels (0 when none)
+    double matchedFraction = 0.0;// matched pixels / pixels of the current frame
+};
+
+// Reprojects `previous` into `current` (nearest pixel; a match needs both pixels valid and depths agreeing to 1%).
+FlickerMeasure reprojectedFlicker(const GlintFrame& previous, const GlintFrame& current);
+
+// The camera path: `frames` cameras, each dollied forward by `step` x the distance to the target (0 = static).
+std::vector<Camera> dollyPath(const Camera& start, int frames, double step);
+
+struct TemporalOptions {
+    std::vector<std::string> scenes;     // empty = plane25, atrium
+    std::vector<std::string> methods;    // empty = every method of the method table
+    std::string camera;
+    int width = 640, height = 360;
+    int frames = 8;                      // cameras along the path (frames - 1 frame pairs)
+    double step = 0.01;
+    Backend backend = Backend::Egl;
+    std::filesystem::path shaderRoot;
+    std::vector<std::string> extraSets;
+    std::optional<std::string> environment;  // --env (default: the scene's)
+    std::string ibl = "prefiltered";
+    std::function<void(const std::string&)> progress;
+};
+
+struct TemporalResult {
+    std::string scene, method;
+    std::vector<double> perPair;         // flicker of each consecutive frame pair
+    double meanFlicker = 0.0, maxFlicker = 0.0, matchedFraction = 0.0;
+};
+
+std::vector<TemporalResult> runTemporal(const TemporalOptions& options);
+nlohmann::json temporalToJson(const TemporalOptions& options, const std::vector<TemporalResult>& results);
+std::string temporalToMarkdown(const std::vector<TemporalResult>& results);
+
+}  // namespace glimmer::bench

@@ -1,0 +1,173 @@
+// Sec. 3 of "Real-time Rendering of Glossy Materials with Regular Sampling" (CGI 2014): per-object environment
+// maps rendered at the object's centroid, face orientation, re-rendering exactly when the scene changes, and the
+// reflection (the map's content) following a moved neighbour.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/files.h"
+#include "core/image_io.h"
+#include "ibl/object_environment.h"
+#include "platform/context.h"
+#include "render/environment_reference.h"
+#include "render/aov.h"
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "render/settings.h"
+#include "scene/scene_loader.h"
+
+namespace glimmer::ibl {
+namespace {
+
+bool reddish(glm::vec3 c) { return c.x > 0.05f && c.x > 3.0f * c.y && c.x > 3.0f * c.z; }
+
+// Number of red texels on a face.
+int redTexels(const std::vector<float>& face) {
+    int n = 0;
+    for (size_t i = 0; i + 3 < face.size(); i += 4) n += reddish({face[i], face[i + 1], face[i + 2]});
+    return n;
+}
+
+TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange) {
+    auto context = createHeadlessContext(Backend::Egl);
+    Scene scene = loadScene("sphere");
+    uint32_t glossy = 0;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i)
+        if (scene.materials[scene.instances[i].material].name == "sphere") glossy = i;
+    // A red diffuse neighbour 1.5 units along +x of the glossy sphere.
+    Material red;
+    red.name = "red";
+    red.baseColor = {1.0f, 0.0f, 0.0f, 1.0f};
+    red.metallic = 0.0f;
+    red.alpha = 0.5f;
+    scene.materials.push_back(red);
+    Instance neighbour = scene.instances[glossy];
+    neighbour.material = uint32_t(scene.materials.size() - 1);
+    const glm::vec3 centre = instanceCentroid(scene, scene.instances[glossy]);
+    const glm::vec3 offset(1.5f, 0.6f, -0.4f);   // off-axis, so a flipped or rotated face would be caught
+    neighbour.transform = glm::translate(glm::mat4(1.0f), centre + offset) *
+                          glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)) *
+                          glm::translate(glm::mat4(1.0f), -centre);
+    scene.instances.push_back(neighbour);
+
+    const int size = 32;
+    ObjectEnvironmentMaps maps(defaultShaderDir(), size, PyramidFilter::Gauss4);
+    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    EXPECT_NEAR(glm::length(maps.centroid(0) - centre), 0.0f, 1e-4f);
+    // Face order +X, -X, ...: the neighbour fills the centre of +X, not of -X.
+    EXPECT_GT(redTexels(maps.readFace(0, 0)), 10);
+    EXPECT_EQ(redTexels(maps.readFace(0, 1)), 0);
+    // Orientation: the red texels' directions (GL cube conventions, envref::cubeTexelDirection) point at the
+    // neighbour's centre within its angular radius.
+    {
+        std::vector<float> face = maps.readFace(0, 0);
+        glm::dvec3 mean(0.0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const float* p = &face[(size_t(y) * size + x) * 4];
+                if (reddish({p[0], p[1], p[2]})) mean += glm::dvec3(envref::cubeTexelDirection(0, x, y, size));
+            }
+        ASSERT_GT(glm::length(mean), 0.0);
+        double angle = std::acos(glm::dot(glm::normalize(mean), glm::normalize(glm::dvec3(offset))));
+        EXPECT_LT(angle, 0.1) << "radians between the red texels and the neighbour";
+    }
+    EXPECT_EQ(maps.update(scene, {glossy}), 0) << "nothing changed: no re-render";
+
+    // Move the neighbour to -x: the map is re-rendered and the red moves to the -X face.
+    scene.instances.back().transform = glm::translate(glm::mat4(1.0f), glm::vec3(-2.0f * offset.x, 0.0f, 0.0f)) *
+                                       scene.instances.back().transform;
+    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    EXPECT_EQ(redTexels(maps.readFace(0, 0)), 0);
+    EXPECT_GT(redTexels(maps.readFace(0, 1)), 10);
+
+    // Moving the glossy object itself moves the centroid the map is rendered from.
+    scene.instances[glossy].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.5f)) *
+                                        scene.instances[glossy].transform;
+    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    EXPECT_NEAR(maps.centroid(0).z, centre.z + 0.5f, 1e-4f);
+}
+
+// Through the lighting pass: with ibl.object_maps = 1 the glossy sphere reflects a red neighbour on the side it
+// stands, and the reflection moves when the neighbour moves; without object maps there is no red reflection.
+TEST(RegularSamplingObjectEnvironment, ReflectionFollowsAMovedNeighbour) {
+    auto context = createHeadlessContext(Backend::Egl);
+    Scene scene = loadScene("sphere");
+    uint32_t glossy = 0;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i)
+        if (scene.materials[scene.instances[i].material].name == "sphere") glossy = i;
+    const uint32_t sphereMaterial = scene.instances[glossy].material;
+    scene.materials[sphereMaterial].metallic = 1.0f;
+    scene.materials[sphereMaterial].glinty = false;
+    Material red;
+    red.name = "red";
+    red.baseColor = {1.0f, 0.0f, 0.0f, 1.0f};
+    red.metallic = 0.0f;
+    scene.materials.push_back(red);
+    const glm::vec3 centre = instanceCentroid(scene, scene.instances[glossy]);
+    Instance neighbour = scene.instances[glossy];
+    neighbour.material = uint32_t(scene.materials.size() - 1);
+    auto placeNeighbour = [&](float x) {
+        return glm::translate(glm::mat4(1.0f), centre + glm::vec3(x, 0.0f, 0.3f)) *
+               glm::scale(glm::mat4(1.0f), glm::vec3(0.6f)) * glm::translate(glm::mat4(1.0f), -centre);
+    };
+    neighbour.transform = placeNeighbour(1.6f);
+    scene.instances.push_back(neighbour);
+    // Sun from above and in front, so both neighbour positions are lit alike in the per-object maps.
+    for (Light& light : scene.lights) {
+        light.type = LightType::Directional;
+        light.vector = glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));
+    }
+    const Camera camera = scene.cameras.front();
+    const int size = 96;
+
+    // Number of distinctly red pixels of the glossy sphere, left and right of the image centre.
+    auto measure = [&](bool objectMaps, glm::vec2& leftRight) {
+        RenderSettings settings;
+        settings.ibl = "regular";
+        settings.apply("light.intensity=0");
+        settings.apply("ibl.mx=0.05");
+        settings.apply("ibl.my=0.05");
+        settings.apply(std::string("ibl.object_maps=") + (objectMaps ? "1" : "0"));
+        settings.apply("ibl.object_map_size=64");
+        GpuScene gpuScene(scene);
+        Renderer renderer(defaultShaderDir(), settings);
+        renderer.render(scene, gpuScene, camera, size, size);
+        std::vector<float> hdr = renderer.readHdr();
+        static int image = 0;
+        std::filesystem::path dir = std::filesystem::path(GLIMMER_TEST_OUTPUT_DIR) / "regular_sampling";
+        std::filesystem::create_directories(dir);
+        writeExr(dir / ("object_maps_" + std::to_string(image++) + ".exr"), hdr.data(), size, size);
+        RenderSettings materialView = settings;
+        materialView.debugView = findAov("material").viewId;
+        renderer.setSettings(materialView);
+        renderer.render(scene, gpuScene, camera, size, size);
+        std::vector<float> ids = renderer.readHdr();
+        glm::dvec2 sum(0.0), count(0.0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                size_t i = (size_t(y) * size + x) * 4;
+                if (ids[i + 3] <= 0.0f || std::lround(ids[i + 2]) != long(sphereMaterial)) continue;
+                int side = x < size / 2 ? 0 : 1;
+                sum[side] += reddish({hdr[i], hdr[i + 1], hdr[i + 2]}) ? 1.0 : 0.0;
+                count[side] += 1.0;
+            }
+        ASSERT_GT(count.x, 50.0);
+        ASSERT_GT(count.y, 50.0);
+        leftRight = glm::vec2(sum);
+    };
+    glm::vec2 withMaps, without, moved;
+    measure(true, withMaps);
+    measure(false, without);
+    scene.instances.back().transform = placeNeighbour(-1.6f);
+    measure(true, moved);
+    std::printf("red sphere pixels left/right: object maps %.0f %.0f, none %.0f %.0f, moved %.0f %.0f\n", withMaps.x,
+                withMaps.y, without.x, without.y, moved.x, moved.y);
+    EXPECT_GT(withMaps.y, 10.0f) << "the neighbour at +x is reflected on the right";
+    EXPECT_EQ(withMaps.x, 0.0f);
+    EXPECT_GT(moved.x, 10.0f) << "moved to -x, its reflection moves to the left";
+    EXPECT_EQ(moved.y, 0.0f);
+    EXPECT_EQ(without.x + without.y, 0.0f) << "the scene's environment has no neighbour in it";
+}
+
+}  // namespace
+}  // namespace glimmer::ibl
