@@ -7,6 +7,18 @@
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
+
+#ifdef GLINT_POST_PASS
+// Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
+// loop and the IBL mode put glint radiance here instead of into o_color; the renderer blurs the occlusion, multiplies,
+// blurs the glints and adds them (shaders/post/). The IBL mode sets the environment glint (before occlusion) and
+// its visibility along the mirror direction.
+vec3 g_postEnvironmentGlint = vec3(0.0);
+float g_postVisibility = 1.0;
+layout(location = 1) out vec4 o_glintEnvironment;  // rgb: environment glints, a: visibility (glinty pixels)
+layout(location = 2) out vec4 o_glintLights;       // rgb: light glints, a: 1 on glinty pixels (occlusion-blur mask)
+#endif
+
 #include GLINT_METHOD_FILE
 #include IBL_MODE_FILE
 
@@ -54,6 +66,10 @@ void main() {
         vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
                                 : u_skyColor.rgb;
         o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
+#ifdef GLINT_POST_PASS
+        o_glintEnvironment = vec4(0.0);
+        o_glintLights = vec4(0.0);
+#endif
         return;
     }
     vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
@@ -97,6 +113,7 @@ void main() {
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
     float firstLightD = 0.0;
+    vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
     int lightCount = int(u_exposure.y);
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;
@@ -114,6 +131,12 @@ void main() {
         vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
 #endif
         if (i == 0) firstLightD = D;
+#ifdef GLINT_POST_PASS
+        if (glinty) {
+            lightGlints += specular * irradiance * wi.z;
+            specular = vec3(0.0);
+        }
+#endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
 
@@ -133,4 +156,10 @@ void main() {
         default: result = vec4(radiance, 1.0); break;
     }
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+#ifdef GLINT_POST_PASS
+    bool postGlints = view == VIEW_FINAL && glinty;
+    o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
+                                    : vec4(0.0);
+    o_glintLights = postGlints ? vec4(finiteOrZero(lightGlints), 1.0) : vec4(0.0);
+#endif
 }

@@ -72,7 +72,7 @@ static GlintMethod kemppinen2025Method() {
 // Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020.glsl).
 // Particle count N is per unit UV square (UVs of the built-in scenes are metres); the square tiles the plane.
 static GlintMethod wang2020Method() {
-    return {"wang2020", "Wang, Deng & Holzschuch 2020 (prefiltered discrete stochastic microfacets)",
+    GlintMethod method{"wang2020", "Wang, Deng & Holzschuch 2020 (prefiltered discrete stochastic microfacets)",
             "GLINT_METHOD_WANG2020", "glints/wang2020.glsl",
             "Wang, Deng & Holzschuch 2020, Real-time glints rendering with prefiltered discrete stochastic "
             "microfacets, Computer Graphics Forum 39(6)",
@@ -83,13 +83,21 @@ static GlintMethod wang2020Method() {
              {"depth", 11.0f, 4.0f, 12.0f, "quadtree depth (paper: 11)", {}, true},
              {"micro_max", 4.0f, 0.0f, 1000.0f, "expected particles in footprint below which micro-scale (Sec. 4.3)"},
              {"macro_min", 64.0f, 1.0f, 100000.0f, "expected particles in footprint above which macro-scale"},
+             {"transition", 1.0f, 0.0f, 3.0f,
+              "octaves of E over which neighbouring scales blend (ours; 0 = the paper's hard thresholds)"},
              {"seed", 1.0f, 0.0f, 1e6f, "random seed of the quadtree's multinomial splitting", {}, true},
              {"table_scale", 1.0f, 1.0f, 3.0f, "DPF table resolution divisor: 1 = 90x90x180 (paper), 2 = 45x45x90",
               {}, true},
              {"color_r", 1.0f, 0.0f, 1.0f, "glint colour, red (tint of the glints; edits re-run no pass, Sec. 4.5)"},
              {"color_g", 1.0f, 0.0f, 1.0f, "glint colour, green"},
-             {"color_b", 1.0f, 0.0f, 1.0f, "glint colour, blue"}},
+             {"color_b", 1.0f, 0.0f, 1.0f, "glint colour, blue"},
+             {"blur_occlusion", 9.0f, 1.0f, 31.0f,
+              "taps of the Gaussian blur of the directional occlusion (Sec. 4.4; paper 9; 1 = none; odd)", {}, true},
+             {"blur_glints", 3.0f, 1.0f, 15.0f,
+              "taps of the Gaussian blur of the glints (Sec. 4.4; paper 3; 1 = none; odd)", {}, true}},
             createWang2020Resources};
+    method.glintPostPass = true;
+    return method;
 }
 
 const std::vector<GlintMethod>& glintMethods() {

@@ -43,6 +43,12 @@ struct GlintMethod {
     std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
     // Optional: creates the method's GPU resources (called with a current context).
     std::function<std::unique_ptr<GlintMethodResources>()> createResources;
+    // Optional screen-space post pass (Wang et al. 2020, Sec. 4.4 "Gaussian Blurring"): the lighting pass writes
+    // the method's glint radiance and its directional occlusion to separate targets (lighting.frag,
+    // GLINT_POST_PASS); the renderer blurs the occlusion with a Gaussian of `blur_occlusion` taps, multiplies,
+    // blurs the glints with one of `blur_glints` taps and adds them (shaders/post/). Such a method declares both
+    // parameters.
+    bool glintPostPass = false;
 };
 
 const std::vector<GlintMethod>& glintMethods();

@@ -17,10 +17,14 @@ static gl::Framebuffer createFramebuffer(const char* label) {
     return gl::Framebuffer(id);
 }
 
-void FrameTargets::resize(int width, int height) {
-    if (width == width_ && height == height_) return;
+void FrameTargets::resize(int width, int height, bool glintPost) {
+    if (width == width_ && height == height_) {
+        if (glintPost && !glintEnvironment_) allocateGlintPost();
+        return;
+    }
     width_ = width;
     height_ = height;
+    glintEnvironment_ = {};  // reallocated below at the new size when needed
     static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
     gbufferFbo_ = createFramebuffer("gbuffer");
     GLenum drawBuffers[kGBufferColorCount];
@@ -43,6 +47,28 @@ void FrameTargets::resize(int width, int height) {
     display_ = gl::createTexture2D(GL_RGBA8, width, height);
     glNamedFramebufferTexture(displayFbo_.id(), GL_COLOR_ATTACHMENT0, display_.id(), 0);
     checkComplete(displayFbo_.id(), "display");
+    if (glintPost) allocateGlintPost();
+}
+
+void FrameTargets::allocateGlintPost() {
+    // RGBA32F: a micro-scale glint can exceed half-float range (one particle's radiance over a whole footprint).
+    glintEnvironment_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
+    glintLights_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
+    occlusionSums_ = gl::createTexture2D(GL_RG32F, width_, height_);
+    occludedGlint_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
+    lightingGlintFbo_ = createFramebuffer("lighting+glints");
+    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
+    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT1, glintEnvironment_.id(), 0);
+    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT2, glintLights_.id(), 0);
+    const GLenum drawBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(lightingGlintFbo_.id(), 3, drawBuffers);
+    checkComplete(lightingGlintFbo_.id(), "lighting+glints");
+    occlusionSumsFbo_ = createFramebuffer("occlusion sums");
+    glNamedFramebufferTexture(occlusionSumsFbo_.id(), GL_COLOR_ATTACHMENT0, occlusionSums_.id(), 0);
+    checkComplete(occlusionSumsFbo_.id(), "occlusion sums");
+    occludedGlintFbo_ = createFramebuffer("occluded glints");
+    glNamedFramebufferTexture(occludedGlintFbo_.id(), GL_COLOR_ATTACHMENT0, occludedGlint_.id(), 0);
+    checkComplete(occludedGlintFbo_.id(), "occluded glints");
 }
 
 }  // namespace glimmer

@@ -44,6 +44,7 @@ public:
     RenderResult render(const RenderRequest& request);
     GLContext& context() { return *context_; }
     Scene& scene() { return scene_; }
+    Renderer& renderer() { return *renderer_; }
 
 private:
     std::unique_ptr<GLContext> context_;

@@ -5,8 +5,10 @@
 #include <algorithm>
 
 #include "core/clock.h"
+#include "core/error.h"
 #include "gl/debug.h"
 #include "glints/methods.h"
+#include "render/glint_post.h"
 #include "render/shader_interface.h"
 
 namespace glimmer {
@@ -36,6 +38,7 @@ gl::ProgramDesc Renderer::lightingDesc() const {
     desc.name = "lighting/" + method.id + (ibl.id == "prefiltered" ? "" : "/" + ibl.id);
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     desc.defines = {method.define, ibl.define};
+    if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
     desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
     desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
@@ -50,7 +53,23 @@ void Renderer::buildPrograms() {
     gbufferProgram_ = std::move(gbuffer);
     lightingProgram_ = std::move(lighting);
     tonemapProgram_ = std::move(tonemap);
+    buildPostPrograms();
     createMethodResources();
+}
+
+void Renderer::buildPostPrograms() {
+    if (!findGlintMethod(settings_.method).glintPostPass) {
+        occlusionBlurProgram_ = {};
+        glintBlurProgram_ = {};
+        return;
+    }
+    gl::Program occlusion(shaderRoot_, {"post/glint_occlusion_blur",
+                                        {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                         {GL_FRAGMENT_SHADER, "post/glint_occlusion_blur.frag"}}});
+    gl::Program glints(shaderRoot_, {"post/glint_blur",
+                                     {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "post/glint_blur.frag"}}});
+    occlusionBlurProgram_ = std::move(occlusion);
+    glintBlurProgram_ = std::move(glints);
 }
 
 void Renderer::createMethodResources() {
@@ -70,9 +89,15 @@ void Renderer::reloadPrograms() {
     }
 }
 
-std::vector<gl::Program*> Renderer::programs() { return {&gbufferProgram_, &lightingProgram_, &tonemapProgram_}; }
+std::vector<gl::Program*> Renderer::programs() {
+    std::vector<gl::Program*> all = {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
+    if (occlusionBlurProgram_) all.insert(all.end(), {&occlusionBlurProgram_, &glintBlurProgram_});
+    return all;
+}
 std::vector<const gl::Program*> Renderer::programs() const {
-    return {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
+    std::vector<const gl::Program*> all = {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
+    if (occlusionBlurProgram_) all.insert(all.end(), {&occlusionBlurProgram_, &glintBlurProgram_});
+    return all;
 }
 
 std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::filesystem::path>& changedFiles) {
@@ -106,6 +131,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
             std::string previousName = lightingProgram_.desc().name;
             lightingProgram_ = gl::Program(shaderRoot_, lightingDesc());
             shaderErrors_.erase(previousName);
+            buildPostPrograms();
             createMethodResources();
         } catch (...) {
             settings_ = previous;
@@ -133,7 +159,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     if (iblResources_)
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
                                environment_.enabled() ? environment_.sourceCube() : 0);
-    targets_.resize(width, height);
+    const bool glintPost = bool(occlusionBlurProgram_);
+    targets_.resize(width, height, glintPost);
     TimerFrame* timerFrame = asyncGpuTimers_ && !measurePasses ? &asyncTimers_[frameIndex_ % kTimerFrames] : nullptr;
     if (!timerFrame) timings_.clear();
     if (timerFrame && timerFrame->pending) {
@@ -259,12 +286,13 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     }
 
     beginPass("lighting");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
+    glBindFramebuffer(GL_FRAMEBUFFER, glintPost ? targets_.lightingGlintFramebuffer() : targets_.hdrFramebuffer());
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     if (blendSample) {
-        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1).
-        glEnable(GL_BLEND);
+        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1). Only the HDR target blends (the
+        // glint post-pass targets hold this sample's glints; their post pass adds them with the same weight).
+        glEnablei(GL_BLEND, 0);
         glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(sampleIndex_ + 1));
         glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
     }
@@ -278,6 +306,50 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);
     endPass("lighting");
+
+    // Wang et al. 2020 Sec. 4.4: blur the directional occlusion (9 taps), multiply, blur the glints (3 taps), add.
+    // Debug views have no glints to add.
+    if (glintPost && settings_.debugView == 0) {
+        const ParamValues values = settings_.methodValues(settings_.method);
+        const GlintMethod& method = findGlintMethod(settings_.method);
+        auto taps = [&](const char* name) {
+            for (const ParamSpec& spec : method.params)
+                if (spec.name == name) return int(paramOr(values, spec) + 0.5f);
+            throw Error(method.id + ": glint post pass needs the parameter " + name);
+        };
+        const int occlusionRadius = glintpost::radiusOf(taps("blur_occlusion"));
+        const int glintRadius = glintpost::radiusOf(taps("blur_glints"));
+        auto setKernel = [](const gl::Program& program, int radius) {
+            std::vector<float> weights = glintpost::binomialWeights(radius);
+            glProgramUniform1i(program.id(), 1, radius);
+            glProgramUniform1fv(program.id(), 2, GLsizei(weights.size()), weights.data());
+        };
+        beginPass("glint_occlusion_blur");
+        occlusionBlurProgram_.use();
+        setKernel(occlusionBlurProgram_, occlusionRadius);
+        glBindTextureUnit(0, targets_.glintEnvironmentTexture());
+        glBindTextureUnit(1, targets_.glintLightsTexture());
+        glBindFramebuffer(GL_FRAMEBUFFER, targets_.occlusionSumsFramebuffer());
+        glProgramUniform1i(occlusionBlurProgram_.id(), 0, 0);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindTextureUnit(2, targets_.occlusionSumsTexture());
+        glBindFramebuffer(GL_FRAMEBUFFER, targets_.occludedGlintFramebuffer());
+        glProgramUniform1i(occlusionBlurProgram_.id(), 0, 1);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        endPass("glint_occlusion_blur");
+
+        beginPass("glint_blur");
+        glintBlurProgram_.use();
+        setKernel(glintBlurProgram_, glintRadius);
+        glBindTextureUnit(0, targets_.occludedGlintTexture());
+        glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
+        glEnable(GL_BLEND);
+        glBlendColor(0.0f, 0.0f, 0.0f, blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f);
+        glBlendFuncSeparate(GL_CONSTANT_ALPHA, GL_ONE, GL_ZERO, GL_ONE);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+        endPass("glint_blur");
+    }
 
     beginPass("tonemap");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_.displayFramebuffer());
@@ -294,6 +366,19 @@ std::vector<float> Renderer::readHdr() const {
     std::vector<float> pixels(size_t(targets_.width()) * targets_.height() * 4);
     glGetTextureImage(targets_.hdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
     return pixels;
+}
+
+static std::vector<float> readRgba32f(GLuint texture, int width, int height) {
+    if (!texture) return {};
+    std::vector<float> pixels(size_t(width) * size_t(height) * 4);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    return pixels;
+}
+std::vector<float> Renderer::readGlintEnvironment() const {
+    return readRgba32f(targets_.glintEnvironmentTexture(), targets_.width(), targets_.height());
+}
+std::vector<float> Renderer::readGlintLights() const {
+    return readRgba32f(targets_.glintLightsTexture(), targets_.width(), targets_.height());
 }
 
 std::vector<uint8_t> Renderer::readDisplay() const {

@@ -78,11 +78,18 @@ public:
     // Readbacks, bottom row first (GL order).
     std::vector<float> readHdr() const;        // RGBA32F
     std::vector<uint8_t> readDisplay() const;  // RGBA8, tone-mapped sRGB
+    // The glint post pass's inputs of the last frame (methods with GlintMethod::glintPostPass, else empty): the
+    // environment-glint and light-glint targets, RGBA32F bottom-up (layout in FrameTargets).
+    std::vector<float> readGlintEnvironment() const;
+    std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
 
 private:
     void buildPrograms();
+    void buildPostPrograms();   // the glint post pass's programs when the method has one, else none
     void createMethodResources();
+    // Sec. 4.4 blurs of the glint post pass (after the lighting pass; `blendWeight` as the lighting pass's).
+    void drawGlintPost(float blendWeight);
     gl::ProgramDesc lightingDesc() const;
     // Every program the renderer draws with (hot reload and dependency listing walk this list).
     std::vector<gl::Program*> programs();
@@ -91,6 +98,7 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
+    gl::Program occlusionBlurProgram_, glintBlurProgram_;   // empty unless the method has a glint post pass
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
     Environment environment_;

@@ -11,6 +11,11 @@
 //   micro: sum over particles in A of H(lambda_k - P) (Eq. 7-8, Eq. 20 with P(i, o, gamma) for lights, Sec. 5),
 //   meso:  (particles in A) x P (Eq. 18, no per-particle test),
 //   macro: E x P (no traversal).
+// Deviation (parameter `transition`, octaves of E; 0 = the paper's hard switch): in the band
+// [P_MICRO_MAX, P_MICRO_MAX 2^w) a meso pixel also traverses as micro and blends the two counts linearly in log E
+// (micro weight 1 at the threshold, 0 at the band's end); in (P_MACRO_MIN 2^-w, P_MACRO_MIN] it blends meso into
+// macro the same way. Both counts have the same expectation, so the mean is unchanged; the blend replaces the
+// abrupt change of texture at the thresholds (sparse glints -> uniform sheen) by a gradual one.
 // Eq. 3 with Eq. 4: f = (i.h) F D^ G / (a(A) sigma(Omega_o) (i.n)(o.n)), D^ = count / N. lighting.frag computes
 // D G F / (4 (i.n)(o.n)), so glintD returns D_eq = 4 (i.h) D^ / (a(A) sigma(Omega_o) (h.n)). The 1 / (h.n) is ours:
 // particle normals follow D(m)(m.n) (projected area), so this makes E[D_eq] = D_Beckmann(h) as the interface asks.
@@ -37,6 +42,8 @@ struct GlintPixel {
     float area;            // a(A)
     float inFootprint;     // particles found in A (micro, meso)
     int lambdaCount;       // micro: lambdas stored
+    float microWeight;     // meso pixels in the micro/meso band: weight of the micro count (else 0)
+    float macroWeight;     // meso pixels in the meso/macro band: weight of the macro count (else 0)
     float lambdas[WANG_MAX_LAMBDAS];
     int visits;            // nodes visited (cost, --aov extra)
 };
@@ -67,6 +74,8 @@ GlintPixel glintSetup(GlintSurface s) {
     px.lambdaCount = 0;
     px.inFootprint = 0.0;
     px.visits = 0;
+    px.microWeight = 0.0;
+    px.macroWeight = 0.0;
     for (int i = 0; i < WANG_MAX_LAMBDAS; ++i) px.lambdas[i] = 1.0;
     float det = s.duvdx.x * s.duvdy.y - s.duvdx.y * s.duvdy.x;
     px.area = abs(det);
@@ -77,6 +86,10 @@ GlintPixel glintSetup(GlintSurface s) {
     px.expected = P_PARTICLES * keep * px.area;
     px.scale = px.expected < P_MICRO_MAX ? WANG_SCALE_MICRO
              : (px.expected > P_MACRO_MIN ? WANG_SCALE_MACRO : WANG_SCALE_MESO);
+    if (px.scale == WANG_SCALE_MESO && P_TRANSITION > 0.0) {
+        px.microWeight = clamp(1.0 - log2(px.expected / P_MICRO_MAX) / P_TRANSITION, 0.0, 1.0);
+        px.macroWeight = clamp(1.0 - log2(P_MACRO_MIN / px.expected) / P_TRANSITION, 0.0, 1.0);
+    }
 #ifdef GLIMMER_LIGHTING_PASS
     // lighting.frag sets up every pixel; glints (and the traversal) only on glinty materials. Scale -1: none.
     if (u_materials[s.materialId].alphaMetallicNdfGlinty.w < 0.5) {
@@ -102,7 +115,8 @@ GlintPixel glintSetup(GlintSurface s) {
     int top = 0;
     for (int y = c0.y; y <= c1.y && y <= c0.y + 2; ++y)
         for (int x = c0.x; x <= c1.x && x <= c0.x + 2; ++x) stack[top++] = ivec3(startLevel, x, y);
-    bool meso = px.scale == WANG_SCALE_MESO;
+    // Meso pixels skip the per-particle work, except in the micro/meso band (they need the lambdas too).
+    bool meso = px.scale == WANG_SCALE_MESO && px.microWeight <= 0.0;
     float leafSize = exp2(-float(depth));
     while (top > 0 && px.visits < WANG_MAX_VISITS) {
         ivec3 node = stack[--top];
@@ -148,22 +162,26 @@ float wangDpf(vec3 wi, vec3 wo) {
     return texture(u_wangDpf, vec3(phi / PI, thetaO / (0.5 * PI), thetaI / (0.5 * PI))).r;
 }
 
+// Particles of the footprint that reflect, for acceptance probability P (P(i, o, gamma) for lights, the filtered
+// P^ for the environment), by the pixel's scale (Sec. 4.3) and, in the transition bands, blended (header).
+float wangReflectingCount(GlintPixel px, float P) {
+    // micro, Eq. 20 / Eq. 7-8: particle k reflects when lambda_k < P (H(lambda - P) = 1 for lambda - P < 0).
+    // Particles beyond the stored lambdas (more than WANG_MAX_LAMBDAS, only when the count far exceeds its
+    // expectation) count with probability P.
+    float micro = 0.0;
+    for (int k = 0; k < px.lambdaCount; ++k) micro += px.lambdas[k] < P ? 1.0 : 0.0;
+    micro += (px.inFootprint - float(px.lambdaCount)) * P;
+    float meso = px.inFootprint * P;   // Eq. 18
+    float macro = px.expected * P;     // area x density x DPF
+    if (px.scale == WANG_SCALE_MICRO) return micro;
+    if (px.scale == WANG_SCALE_MACRO) return macro;
+    return mix(mix(meso, micro, px.microWeight), macro, px.macroWeight);
+}
+
 float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     if (px.expected <= 0.0 || h.z <= 1e-4 || s.densityScale <= 0.0) return 0.0;
     float P = min(wangDpf(wi, wo), 1.0);
-    float reflecting;
-    if (px.scale == WANG_SCALE_MICRO) {
-        // Eq. 20 / Eq. 7-8: particle k reflects when lambda_k < P (H(lambda - P) = 1 for lambda - P < 0). Particles
-        // beyond the stored lambdas (more than WANG_MAX_LAMBDAS, only when the count far exceeds its expectation)
-        // count with probability P.
-        reflecting = 0.0;
-        for (int k = 0; k < px.lambdaCount; ++k) reflecting += px.lambdas[k] < P ? 1.0 : 0.0;
-        reflecting += (px.inFootprint - float(px.lambdaCount)) * P;
-    } else if (px.scale == WANG_SCALE_MESO) {
-        reflecting = px.inFootprint * P;   // Eq. 18
-    } else {
-        reflecting = px.expected * P;      // macro: area x density x DPF
-    }
+    float reflecting = wangReflectingCount(px, P);
     float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
     float D = 4.0 * max(dot(wi, h), 0.0) * reflecting / (px.expected * sigmaO * h.z);
     return isnan(D) || isinf(D) ? 0.0 : D;
@@ -181,9 +199,12 @@ vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) {
     return vec4(px.expected, float(px.scale), px.inFootprint, float(px.visits));
 }
 
-// --aov extra (and --aov glintscale): the scale as a colour, red micro, green meso, blue macro (Fig. 4a); black
-// on materials without glints.
+// --aov extra (and --aov glintscale): the scale as a colour, red micro, green meso, blue macro (Fig. 4a), mixed
+// by the blend weights in the transition bands; black on materials without glints.
 vec4 glintExtraAOV(GlintPixel px, GlintSurface s) {
-    return vec4(px.scale == WANG_SCALE_MICRO ? 1.0 : 0.0, px.scale == WANG_SCALE_MESO ? 1.0 : 0.0,
-                px.scale == WANG_SCALE_MACRO ? 1.0 : 0.0, 1.0);
+    if (px.scale == WANG_SCALE_MICRO) return vec4(1.0, 0.0, 0.0, 1.0);
+    if (px.scale == WANG_SCALE_MACRO) return vec4(0.0, 0.0, 1.0, 1.0);
+    if (px.scale != WANG_SCALE_MESO) return vec4(0.0, 0.0, 0.0, 1.0);
+    float micro = px.microWeight, macro = px.macroWeight;
+    return vec4(micro, (1.0 - micro) * (1.0 - macro), macro, 1.0);
 }

@@ -45,19 +45,20 @@ vec4 wangGlintTable(vec3 nWorld, vec3 toEye) {
     return sum;
 }
 
-// Directional occlusion (Sec. 4.4): visibility of the environment along the mirror direction r of the view about
-// the normal. The paper shoots one ray; in this rasterizer: a screen-space march in the depth buffer (16 steps,
+// Directional occlusion (Sec. 4.4): visibility (0 or 1) of the environment along the mirror direction r of the view
+// about the normal, one ray as in the paper. In this rasterizer: a screen-space march in the depth buffer (16 steps,
 // geometrically spaced from 2 cm to 8 m; a step is blocked when the stored surface is nearer to the camera than
 // the ray point by less than 0.5 m, the assumed thickness). Off-screen or behind the camera: visible.
-// Deviation: the paper blurs this 0/1 visibility with a 9-wide Gaussian in a separate pass; here the march is
-// repeated for 4 directions jittered within 3 degrees of r and averaged (no post pass), and the glints are not
-// blurred by the 3-wide Gaussian (see docs-draft/wang2020.md).
+// The 0/1 result goes to the alpha of the environment-glint target; the post pass blurs it with the paper's
+// 9-tap Gaussian into the soft-shadow weight delta (shaders/post/glint_occlusion_blur.frag).
 layout(binding = 5) uniform sampler2D u_wangDepth;   // the lighting pass's depth (reversed Z), unit 5
 
-float wangVisibleAlong(vec3 position, vec3 dir) {
+float wangDirectionalOcclusion(vec3 position, vec3 n, vec3 toEye) {
+    vec3 dir = reflect(-toEye, n);
+    vec3 start = position + n * 0.005;
     float t = 0.02;
     for (int i = 0; i < 16; ++i, t *= 1.55) {
-        vec3 p = position + dir * t;
+        vec3 p = start + dir * t;
         vec4 clip = u_viewProjection * vec4(p, 1.0);
         if (clip.w <= 1e-4) return 1.0;
         vec3 ndc = clip.xyz / clip.w;
@@ -73,19 +74,6 @@ float wangVisibleAlong(vec3 position, vec3 dir) {
     return 1.0;
 }
 
-float wangDirectionalOcclusion(vec3 position, vec3 n, vec3 toEye) {
-    vec3 r = reflect(-toEye, n);
-    vec3 x = normalize(abs(r.y) < 0.9 ? cross(r, vec3(0.0, 1.0, 0.0)) : cross(r, vec3(1.0, 0.0, 0.0)));
-    vec3 y = cross(r, x);
-    float spread = tan(3.0 * PI / 180.0), visible = 0.0;
-    vec3 start = position + n * 0.005;
-    for (int k = 0; k < 4; ++k) {
-        float a = (float(k) + 0.5) * 0.5 * PI;
-        visible += wangVisibleAlong(start, normalize(r + spread * (cos(a) * x + sin(a) * y)));
-    }
-    return visible * 0.25;
-}
-
 vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat3 worldToShading,
                  vec3 diffuseAlbedo, vec3 f0, bool glinty, uint sampleIndex) {
 #ifdef GLINT_METHOD_WANG2020
@@ -93,21 +81,15 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
         vec4 table = wangGlintTable(s.n, toEyeWorld);
         float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
         float filteredP = clamp(table.a, 1e-8, 1.0);
-        float factor;
-        if (glint.scale == WANG_SCALE_MICRO) {
-            float reflecting = 0.0;   // Eq. 20: H(lambda_k - P^) = 1 when lambda_k < P^
-            for (int k = 0; k < glint.lambdaCount; ++k) reflecting += glint.lambdas[k] < filteredP ? 1.0 : 0.0;
-            reflecting += (glint.inFootprint - float(glint.lambdaCount)) * filteredP;
-            factor = reflecting / (glint.expected * sigmaO * filteredP);
-        } else if (glint.scale == WANG_SCALE_MESO) {
-            factor = glint.inFootprint / (glint.expected * sigmaO);
-        } else {
-            factor = 1.0 / sigmaO;
-        }
+        // Eq. 20 (micro), Eq. 18 (meso), macro, with the transition bands of the glint method: all three are
+        // (reflecting count) / (a(A) sigma N P^) with the count for acceptance probability P^.
+        float factor = wangReflectingCount(glint, filteredP) / (glint.expected * sigmaO * filteredP);
         vec3 F = F_Schlick(f0, clamp(wo.z, 0.0, 1.0));
-        vec3 specular = wangGlintColor() * F * max(table.rgb, vec3(0.0)) * factor;
-        specular *= wangDirectionalOcclusion(s.position, s.n, toEyeWorld);
-        return envDiffuse(s.n) * diffuseAlbedo + specular;
+        // To the post pass (lighting.frag GLINT_POST_PASS, which the method wang2020 always enables): the glint
+        // before occlusion and the visibility; the blurred visibility multiplies it there (Sec. 4.4).
+        g_postEnvironmentGlint = wangGlintColor() * F * max(table.rgb, vec3(0.0)) * factor;
+        g_postVisibility = wangDirectionalOcclusion(s.position, s.n, toEyeWorld);
+        return envDiffuse(s.n) * diffuseAlbedo;
     }
 #endif
     return envLighting(s.n, toEyeWorld, diffuseAlbedo, f0, s.alpha, s.ndf);
