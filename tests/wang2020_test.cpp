@@ -637,3 +637,147 @@ TEST(Wang2020Render, NoTextureSeamAtThresholds) {
     EXPECT_LT(largestTextureStep("3.4e6", "1", 16.0, 256.0), limit);
     if (std::getenv("GLIMMER_WANG2020_SEAM_REPORT")) largestTextureStep("3.4e6", "0", 16.0, 256.0);  // docs only
 }
+
+namespace {
+// Expectation of the explicit-particle reference (what it converges to over particle sets): the Beckmann
+// microfacet integral of the map, int L(i) D G F / (4 o.n) di, by quadrature over the map box-filtered 4 x 4
+// (energy preserving), on a 32 x 32 grid of the view's plane pixels (uv from the G-buffer), times the glint colour.
+// The explicit reference with one particle set is a heavy-tailed sample of it under maps with tiny bright lamps
+// (studio_small_03 peaks at 3568): its sum fell 34 % short for the sparse material.
+double expectedGlintMean(const ImageF& map, const std::vector<float>& uv, glm::vec3 eye, float alpha, glm::vec3 color) {
+    const int W = map.width / 4, H = map.height / 4;
+    std::vector<glm::dvec3> box(size_t(W) * H, glm::dvec3(0.0));
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i)
+                    box[size_t(y) * W + x] += glm::dvec3(map.at(4 * x + i, 4 * y + j, 0), map.at(4 * x + i, 4 * y + j, 1),
+                                                         map.at(4 * x + i, 4 * y + j, 2)) / 16.0;
+    double total = 0.0;
+    int pixels = 0;
+    for (int py = 4; py < 256; py += 8)
+        for (int px = 4; px < 256; px += 8) {
+            size_t p = size_t(py) * 256 + size_t(px);
+            if (uv[4 * p + 3] == 0.0f) continue;
+            glm::dvec3 o = glm::normalize(glm::dvec3(eye) - glm::dvec3(uv[4 * p], 0.0, uv[4 * p + 1]));
+            glm::dvec3 sum(0.0);
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) {
+                    glm::vec2 t((x + 0.5f) / W, (y + 0.5f) / H);
+                    glm::dvec3 i(envref::equirectToDirection(t));
+                    if (i.y <= 0.0) continue;
+                    double dw = (2.0 * w::kPi / W) * (w::kPi / H) * std::sin(w::kPi * t.y);
+                    glm::dvec3 h = glm::normalize(i + o);
+                    double f = envref::ndfD(h.y, alpha, envref::kNdfBeckmann) * envref::smithG1(i.y, alpha, envref::kNdfBeckmann) *
+                               envref::smithG1(o.y, alpha, envref::kNdfBeckmann) / (4.0 * o.y);
+                    sum += box[size_t(y) * W + x] * (f * dw);
+                }
+            double F = 0.9 + 0.1 * std::pow(1.0 - o.y, 5.0);  // Schlick at n.o, f0 = 0.9 (as the shader)
+            total += (sum.x * color.x + sum.y * color.y + sum.z * color.z) / 3.0 * F;
+            ++pixels;
+        }
+    return total / std::max(pixels, 1);
+}
+}  // namespace
+
+// The README's environment-lit glints next to the CPU reference (the "snow, glitter cloth"): the tilted view
+// of the test plane under the studio HDR (--ibl wang2020, lights off, metallic base so only glints are lit), for
+// snow-like fine white sparkle (alpha 0.1, gamma 6, N 1e6) and glitter cloth (alpha 0.5, gamma 2, N 1e5, pink
+// glint colour). Reference: wang2020::explicitParticleEnvironment on the same footprints and particles, times the
+// same Fresnel and colour, then the same 3-tap blur as the shader's post pass (glintpost::referencePostPass).
+// Writes shader | reference (shared exposure) to the test output (copied to screenshots/ for the README). Checks
+// the total glint energy within 25 % (the paper's Table 1 criterion) of the reference's expectation
+// (expectedGlintMean) for both, and of the explicit reference itself for the dense snow (measured: snow 0.89 of
+// the reference, 0.88 of the expectation, the rest being false occlusion of the screen-space march at grazing
+// angles; glitter 0.99 of the expectation, while one particle set of the reference reaches only 0.66 of it: its
+// few particles that see the studio's lamps carry the energy).
+TEST(Wang2020Environment, SnowAndGlitterClothNextToReference) {
+    useTestCache();
+    std::string hdr = assetsDir() + "/hdri/studio_small_03_1k.hdr";
+    if (!std::filesystem::exists(hdr)) GTEST_SKIP() << "no " << hdr;
+    ImageF image = readImage(hdr);
+    struct Look {
+        const char* name;
+        GlintMaterial m;
+        glm::vec3 color;
+    };
+    for (const Look& look : {Look{"snow", {0.1f, 6.0f, 1e6f}, {1.0f, 1.0f, 1.0f}},
+                             Look{"glitter_cloth", {0.5f, 2.0f, 1e5f}, {1.0f, 0.55f, 0.75f}}}) {
+        const GlintMaterial& m = look.m;
+        RenderRequest request;
+        request.scene = kScene;
+        request.camera = "tilted";
+        request.width = request.height = 256;
+        request.environment = hdr;
+        request.settings.method = "wang2020";
+        request.settings.ibl = "wang2020";
+        for (const std::string& s :
+             {"material.alpha=" + std::to_string(m.alpha), "wang2020.roughness=" + std::to_string(m.alpha),
+              "wang2020.gamma=" + std::to_string(m.gamma), "wang2020.particles=" + std::to_string(m.particles),
+              "wang2020.color_r=" + std::to_string(look.color.x), "wang2020.color_g=" + std::to_string(look.color.y),
+              "wang2020.color_b=" + std::to_string(look.color.z), std::string("wang2020.table_scale=2"),
+              std::string("light.intensity=0")})
+            request.settings.apply(s);
+        OffscreenSession session(request);
+        auto aov = [&](const char* name) {
+            RenderRequest r = request;
+            r.settings.debugView = findAov(name).viewId;
+            return session.render(r).hdr;
+        };
+        std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), shader = aov("final");
+        glm::vec3 eye{};
+        for (const Camera& c : session.scene().cameras)
+            if (c.name == "tilted") eye = c.position;
+        w::Quadtree tree = w::buildQuadtree(m.particles, 11, 1);
+        std::vector<float> reference(uv.size(), 0.0f), noLights(uv.size(), 0.0f);
+        for (size_t p = 0; p < uv.size() / 4; ++p) {
+            noLights[4 * p + 3] = 1.0f;   // mask set, no light glints: the occlusion blur leaves visibility 1
+            reference[4 * p + 3] = 1.0f;  // visible (a plane under the sky)
+            if (shader[4 * p + 3] == 0.0f) continue;  // background
+            glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
+            w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
+            glm::vec3 toEye = glm::normalize(eye - glm::vec3(u.x, 0.0f, u.y));
+            glm::vec3 wo(toEye.x, toEye.z, toEye.y);
+            glm::vec3 L = w::explicitParticleEnvironment(tree, fp, wo, m.alpha, [&](glm::vec3 wi) {
+                return envref::sampleEquirect(image, glm::vec3(wi.x, wi.z, wi.y));
+            });
+            float f = 0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0));  // Schlick, f0 = 0.9 (as the shader)
+            for (int c = 0; c < 3; ++c) reference[4 * p + size_t(c)] = L[c] * f * look.color[c];
+        }
+        std::vector<float> blurred = glintpost::referencePostPass(reference, noLights, 256, 256, 9, 3);
+        double gpu = 0, ref = 0;
+        std::vector<double> luminance;
+        for (size_t p = 0; p < uv.size() / 4; ++p) {
+            if (shader[4 * p + 3] == 0.0f) {  // background: the map, not glints (both sides show black)
+                for (int c = 0; c < 3; ++c) blurred[4 * p + size_t(c)] = shader[4 * p + size_t(c)] = 0.0f;
+                continue;
+            }
+            for (int c = 0; c < 3; ++c) gpu += shader[4 * p + size_t(c)], ref += blurred[4 * p + size_t(c)];
+            luminance.push_back((blurred[4 * p] + blurred[4 * p + 1] + blurred[4 * p + 2]) / 3.0);
+        }
+        std::sort(luminance.begin(), luminance.end());
+        double scale = 0.8 / std::max(luminance[size_t(luminance.size() * 0.995)], 1e-12);
+        std::vector<uint8_t> rgba(size_t(512) * 256 * 4, 255);
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x)
+                for (int side = 0; side < 2; ++side)
+                    for (int c = 0; c < 3; ++c) {
+                        size_t p = (size_t(y) * 256 + size_t(x)) * 4 + size_t(c);
+                        double v = (side ? blurred[p] : shader[p]) * scale;
+                        v = std::pow(std::clamp(v, 0.0, 1.0), 1.0 / 2.2);
+                        rgba[(size_t(y) * 512 + size_t(x) + size_t(side) * 256) * 4 + size_t(c)] = uint8_t(std::lround(v * 255));
+                    }
+        std::filesystem::create_directories(GLIMMER_TEST_OUTPUT_DIR);
+        writePng(std::filesystem::path(GLIMMER_TEST_OUTPUT_DIR) / ("wang2020_env_" + std::string(look.name) +
+                                                                   "_shader_vs_reference.png"),
+                 rgba.data(), 512, 256);
+        double plane = 0;
+        for (size_t p = 0; p < uv.size() / 4; ++p) plane += shader[4 * p + 3] != 0.0f;
+        double expected = expectedGlintMean(image, uv, eye, m.alpha, look.color) * 3.0 * plane;
+        std::printf("wang2020 environment (studio, tilted) %s: energy shader %.4g, explicit reference %.4g, its "
+                    "expectation %.4g; shader / expectation %.3f, reference / expectation %.3f\n",
+                    look.name, gpu, ref, expected, gpu / expected, ref / expected);
+        EXPECT_NEAR(gpu / expected, 1.0, 0.25) << look.name;
+        if (m.particles >= 1e6f) EXPECT_NEAR(gpu / ref, 1.0, 0.25) << look.name;  // dense: one set converges
+    }
+}
