@@ -372,10 +372,10 @@ TEST(BenchSplitView, WindowShowsBothMethodsAroundTheDivider) {
     std::filesystem::create_directories(dir);
     const std::string view = (dir / "split_view.png").string(), left = (dir / "split_smooth.png").string(),
                       right = (dir / "split_zirr2016.png").string();
-    std::string command = std::string("xvfb-run -a -s \"-screen 0 1280x720x24\" ") + GLIMMER_EXECUTABLE +
+    std::string command = std::string(GLIMMER_EXECUTABLE) +
                           " view --scene plane25 --size 128x96 --frames 2 --hide-ui --split zirr2016 --split-at 0.5"
                           " --screenshot " + view + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    ASSERT_EQ(test::runUnderXvfb(command), 0) << command;
     for (const auto& [method, out] : {std::pair{"smooth", left}, std::pair{"zirr2016", right}}) {
         auto run = test::runGlimmer({"render", "--scene", "plane25", "--size", "128x96", "--method", method, "--out", out});
         ASSERT_EQ(run.exitCode, 0) << run.err;

@@ -14,12 +14,11 @@
 
 #include "core/image_io.h"
 #include "support/golden.h"
+#include "support/process.h"
 
 namespace glimmer {
 namespace {
 namespace fs = std::filesystem;
-
-const char* kXvfb = "xvfb-run -a -s \"-screen 0 1280x720x24\" ";
 
 int run(const std::string& command) {
     int status = std::system((command + " > /dev/null 2>&1").c_str());
@@ -58,8 +57,9 @@ void expectWindowEqualsRender(const std::string& name, const std::string& sceneA
     fs::path dir = outputDir();
     std::string size = std::to_string(width) + "x" + std::to_string(height);
     fs::path windowShot = dir / (name + "_view.png"), rendered = dir / (name + "_render.png");
-    ASSERT_EQ(run(std::string(kXvfb) + GLIMMER_EXECUTABLE " view " + sceneArgs + " --size " + size +
-                  " --frames 3 --hide-ui --screenshot " + windowShot.string()), 0);
+    ASSERT_EQ(test::runUnderXvfb(std::string(GLIMMER_EXECUTABLE " view ") + sceneArgs + " --size " + size +
+                                 " --frames 3 --hide-ui --screenshot " + windowShot.string() + " > /dev/null 2>&1"),
+              0);
     ASSERT_EQ(run(std::string(GLIMMER_EXECUTABLE) + " render " + sceneArgs + " --size " + size +
                   " --frames 3 --out " + rendered.string()), 0);
     ImageF a = readImage(windowShot), b = readImage(rendered);
@@ -84,9 +84,9 @@ TEST(Window, UiPanelAndStatsAreDrawnOverThePicture) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
     fs::path dir = outputDir();
     fs::path withUi = dir / "ui.png", withoutUi = dir / "noui.png";
-    std::string common = std::string(kXvfb) + GLIMMER_EXECUTABLE " view --scene sphere --size 1280x720 --frames 3 ";
-    ASSERT_EQ(run(common + "--screenshot " + withUi.string()), 0);
-    ASSERT_EQ(run(common + "--hide-ui --screenshot " + withoutUi.string()), 0);
+    std::string common = GLIMMER_EXECUTABLE " view --scene sphere --size 1280x720 --frames 3 ";
+    ASSERT_EQ(test::runUnderXvfb(common + "--screenshot " + withUi.string() + " > /dev/null 2>&1"), 0);
+    ASSERT_EQ(test::runUnderXvfb(common + "--hide-ui --screenshot " + withoutUi.string() + " > /dev/null 2>&1"), 0);
     ImageF ui = readImage(withUi), plain = readImage(withoutUi);
     ASSERT_EQ(ui.width, 1280);
     ASSERT_EQ(ui.height, 720);
@@ -115,10 +115,10 @@ TEST(Window, BrokenShaderFailsAFramesRunWithFileAndLine) {
         out << "\nthis is not glsl;\n";
     }
     fs::path errors = outputDir() / "broken-shaders.err";
-    int status = std::system((std::string(kXvfb) + GLIMMER_EXECUTABLE " view --size 64x64 --frames 1 --shader-dir " +
-                              dir.string() + " --screenshot " + (outputDir() / "never.png").string() + " > /dev/null 2> " +
-                              errors.string()).c_str());
-    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
+    int code = test::runUnderXvfb(GLIMMER_EXECUTABLE " view --size 64x64 --frames 1 --shader-dir " + dir.string() +
+                                  " --screenshot " + (outputDir() / "never.png").string() + " > /dev/null 2> " +
+                                  errors.string());
+    EXPECT_EQ(code, 1);
     std::ifstream in(errors);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("tonemap.frag:"), std::string::npos) << text;

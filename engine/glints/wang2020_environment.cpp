@@ -35,18 +35,24 @@ EnvironmentKey currentEnvironment() {
 
 class Wang2020EnvironmentResources : public GlintMethodResources {
 public:
-    std::vector<std::pair<std::string, double>> update(const ParamValues&) override {
+    std::vector<std::pair<std::string, double>> update(const ParamValues& values) override {
         std::vector<std::pair<std::string, double>> ran;
         Wang2020Resources* glints = Wang2020Resources::active();
         if (!glints || glints->dpfTexture() == 0) return ran;  // another glint method: the shader falls back
         EnvironmentKey env = currentEnvironment();
-        if (glints == owner_ && glints->dpfVersion() == version_ && env == environment_) return ran;
+        auto chosen = values.find("prefilter");  // ibl.prefilter: 0 dpf (the paper's, default), 1 cone
+        auto estimator = chosen != values.end() && chosen->second > 0.5f ? wang2020::Prefilter::Estimator::Cone
+                                                                         : wang2020::Prefilter::Estimator::Dpf;
+        if (glints == owner_ && glints->dpfVersion() == version_ && env == environment_ && estimator == estimator_)
+            return ran;
         if (!prefilter_) prefilter_ = std::make_unique<wang2020::Prefilter>(defaultShaderDir());
         wang2020::PrefilterResolution res = wang2020::prefilterResolution(glints->roughness());
-        double ms = prefilter_->run(glints->dpfTexture(), glints->roughness(), res);
+        double ms = prefilter_->run(glints->dpfTexture(), glints->roughness(), glints->gamma() * wang2020::kDegree,
+                                    estimator, res);
         owner_ = glints;
         version_ = glints->dpfVersion();
         environment_ = env;
+        estimator_ = estimator;
         log::info("wang2020: environment prefilter ", res.thetaN, "x", res.phiN, "x", res.thetaO, "x", res.phiO, " (",
                   prefilter_->bytes() / (1024.0 * 1024.0), " MB) in ", ms, " ms");
         ran.push_back({"wang2020.prefilter", ms});
@@ -61,6 +67,7 @@ private:
     const Wang2020Resources* owner_ = nullptr;
     uint64_t version_ = 0;
     EnvironmentKey environment_;
+    wang2020::Prefilter::Estimator estimator_ = wang2020::Prefilter::Estimator::Dpf;
 };
 
 }  // namespace

@@ -23,7 +23,7 @@ Prefilter::Prefilter(const std::filesystem::path& shaderRoot) {
     program_ = gl::Program(shaderRoot, desc);
 }
 
-double Prefilter::run(GLuint dpfTexture, float alpha, PrefilterResolution res) {
+double Prefilter::run(GLuint dpfTexture, float alpha, float gamma, Estimator estimator, PrefilterResolution res) {
     Stopwatch clock;
     res_ = res;
     std::vector<glm::vec4> header = {glm::vec4(res.thetaN, res.phiN, res.thetaO, res.phiO)};
@@ -35,6 +35,8 @@ double Prefilter::run(GLuint dpfTexture, float alpha, PrefilterResolution res) {
     glProgramUniform4i(program_.id(), glGetUniformLocation(program_.id(), "u_tableSize"), res.thetaN, res.phiN,
                        res.thetaO, res.phiO);
     glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "u_alpha"), alpha);
+    glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "u_gamma"), gamma);
+    glProgramUniform1i(program_.id(), glGetUniformLocation(program_.id(), "u_estimator"), int(estimator));
     glBindTextureUnit(8, dpfTexture);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTableBinding, table_.id());
     glDispatchCompute(GLuint((res.size() + 63) / 64), 1, 1);

@@ -1,6 +1,7 @@
 // Wang et al. 2020, Sec. 4.2 / 4.4: the environment prefilter pass (shaders/glints/wang2020_prefilter.comp) into
 // the 4D glint table over normal and view direction: per entry rgb = filtered glint radiance L^o(n, o) (Eq. 16,
 // K = 64), a = filtered DPF P^(n, o) (Eq. 17). Resolutions from roughness as in the paper's Table 2.
+// Two estimators of Eq. 16 (header of the shader): the paper's (default) and a cone form (ours, optional).
 #pragma once
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -23,8 +24,10 @@ class Prefilter {
 public:
     static constexpr int kTableBinding = 16;  // SSBO read by shaders/ibl/wang2020.glsl (IBL-mode range 16-23)
     explicit Prefilter(const std::filesystem::path& shaderRoot);
+    enum class Estimator { Dpf = 0, Cone = 1 };
     // Runs the pass (environment bound at units 6-7 and binding 7, DPF at unit 8); returns its wall time (ms).
-    double run(GLuint dpfTexture, float alpha, PrefilterResolution res);
+    // gamma in radians.
+    double run(GLuint dpfTexture, float alpha, float gamma, Estimator estimator, PrefilterResolution res);
     void bind() const;
     std::vector<glm::vec4> read() const;  // for tests: the table without its header entry
     const PrefilterResolution& resolution() const { return res_; }

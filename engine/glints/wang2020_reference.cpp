@@ -26,7 +26,8 @@ ReferenceResult explicitParticleD(const Quadtree& tree, const Footprint& fp, glm
     return r;
 }
 
-glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::vec3 wo) {
+glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, float gamma, glm::vec3 wo,
+                                         PrefilterEstimator estimator) {
     const int K = 64;
     auto radicalInverse = [](uint32_t bits) {
         bits = (bits << 16u) | (bits >> 16u);
@@ -36,20 +37,37 @@ glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, glm::
         bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
         return float(double(bits) * 2.3283064365386963e-10);
     };
+    const float cosGamma = std::cos(gamma), sigma = coneSolidAngle(gamma);
+    const glm::vec3 coneX = glm::normalize(
+        glm::cross(std::abs(wo.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f), wo));
+    const glm::vec3 coneY = glm::cross(wo, coneX);
     double radiance = 0.0;
     for (int j = 0; j < K; ++j) {
         float u1 = (j + 0.5f) / K, u2 = radicalInverse(uint32_t(j));
         float tan2 = -alpha * alpha * std::log(1.0f - u1);
         float cosM = 1.0f / std::sqrt(1.0f + tan2), sinM = std::sqrt(std::max(0.0f, 1.0f - cosM * cosM));
         glm::vec3 m(sinM * std::cos(2 * kPi * u2), sinM * std::sin(2 * kPi * u2), cosM);
-        float om = glm::dot(wo, m);
+        glm::vec3 toward = wo;
+        if (estimator == PrefilterEstimator::Cone) {  // R2 sequence, uniform over the cone (as the shader)
+            float v1 = std::fmod(0.5f + float(j) * 0.75487766f, 1.0f), v2 = std::fmod(0.5f + float(j) * 0.56984029f, 1.0f);
+            float cosT = 1.0f - v1 * (1.0f - cosGamma), sinT = std::sqrt(std::max(1.0f - cosT * cosT, 0.0f));
+            toward = glm::normalize(sinT * std::cos(2 * kPi * v2) * coneX + sinT * std::sin(2 * kPi * v2) * coneY +
+                                    cosT * wo);
+            if (toward.z <= 0.0f) continue;
+        }
+        float om = glm::dot(toward, m);
         if (om <= 0.0f) continue;
-        glm::vec3 wi = 2.0f * om * m - wo;
+        glm::vec3 wi = 2.0f * om * m - toward;
         if (wi.z <= 0.0f) continue;
-        float P = std::min(dpf.lookup(wi, wo), 1.0f);
-        float M = glm::dot(wi, m) * smithG1Beckmann(wi, alpha) * smithG1Beckmann(wo, alpha) / (m.z * wo.z);
-        float pdf = beckmannD(m, alpha) * m.z / (4.0f * om);
-        radiance += P * M / std::max(pdf, 1e-12f);
+        glm::vec3 h = estimator == PrefilterEstimator::Cone ? glm::normalize(wi + wo) : m;  // half vector of i, o
+        float M = glm::dot(wi, h) * smithG1Beckmann(wi, alpha) * smithG1Beckmann(wo, alpha) / (h.z * wo.z);
+        if (estimator == PrefilterEstimator::Cone) {
+            radiance += sigma * M;
+        } else {
+            float P = std::min(dpf.lookup(wi, wo), 1.0f);
+            float pdf = beckmannD(m, alpha) * m.z / (4.0f * om);
+            radiance += P * M / std::max(pdf, 1e-12f);
+        }
     }
     double filtered = 0.0;
     for (int k = 0; k < 9; ++k)

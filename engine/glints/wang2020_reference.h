@@ -31,10 +31,12 @@ glm::vec3 explicitParticleEnvironment(const Quadtree& tree, const Footprint& fp,
 float smithG1Beckmann(glm::vec3 w, float alpha);
 
 // CPU version of the prefilter pass (shaders/glints/wang2020_prefilter.comp) for an environment of constant radiance
-// 1: (L^o, P^) of Eq. 16 (the same K = 64 Hammersley points) and Eq. 17 for a view direction wo in the normal's
-// frame (with constant radiance the table does not depend on the normal).
-glm::vec2 prefilteredConstantEnvironment(
-    const DpfTable& dpf, float alpha, glm::vec3 wo);  // Walter et al. 2007 rational approximation (as common/brdf.glsl)
+// 1: (L^o, P^) of Eq. 16 (the same K = 64 points, cone form or the paper's DPF-weighted form) and Eq. 17 for a view
+// direction wo in the normal's frame (with constant radiance the table does not depend on the normal). gamma in
+// radians (the cone form's cone; the dpf table is already accumulated for it).
+enum class PrefilterEstimator { Dpf = 0, Cone = 1 };  // as wang2020::Prefilter::Estimator
+glm::vec2 prefilteredConstantEnvironment(const DpfTable& dpf, float alpha, float gamma, glm::vec3 wo,
+                                         PrefilterEstimator estimator);
 
 }  // namespace glimmer::wang2020
 

@@ -23,6 +23,21 @@ static std::string slurp(const std::string& path) {
     return s.str();
 }
 
+int runUnderXvfb(const std::string& command) {
+    static int counter = 0;
+    std::string codePath =
+        (testOutputDir() / ("xvfb-" + std::to_string(getpid()) + "-" + std::to_string(counter++) + ".status")).string();
+    std::filesystem::remove(codePath);
+    // The command goes to sh as one single-quoted argument: it must not contain single quotes itself.
+    std::string wrapped = "xvfb-run -a -s \"-screen 0 1280x720x24\" sh -c '" + command + "; echo $? > " + codePath +
+                          "' > /dev/null 2>&1";
+    int status = std::system(wrapped.c_str());
+    std::ifstream in(codePath);
+    int code = -1;
+    if (in >> code) return code;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 ProcessResult runGlimmer(const std::vector<std::string>& args, const std::vector<std::string>& extraEnv) {
     static int counter = 0;
     std::string base = (testOutputDir() / ("proc-" + std::to_string(getpid()) + "-" + std::to_string(counter++))).string();
