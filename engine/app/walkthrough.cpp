@@ -83,6 +83,13 @@ std::string formatMs(double ms) {
     return text;
 }
 
+// Three significant digits at most (the stats line lists every pass: it must fit 1280 pixels).
+std::string formatMsShort(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, ms >= 100.0 ? "%.0f" : (ms >= 10.0 ? "%.1f" : "%.2f"), ms);
+    return text;
+}
+
 class Walkthrough {
 public:
     explicit Walkthrough(const ViewOptions& options)
@@ -431,7 +438,8 @@ private:
         std::vector<std::string> lines;
         for (const std::string& error : errors())
             for (const std::string& l : wrapText("SHADER ERROR " + error, columns)) lines.push_back(l);
-        float statsHeight = showUi() ? 2.0f * line + 2.0f * margin : 0.0f;
+        std::vector<StatsLine> stats = showUi() ? statsText(float(width) - 2.0f * margin) : std::vector<StatsLine>{};
+        float statsHeight = showUi() ? float(stats.size()) * line + 2.0f * margin : 0.0f;
         if (!lines.empty()) {
             float boxHeight = float(lines.size()) * line + 2.0f * margin;
             float top = float(height) - statsHeight - boxHeight;
@@ -449,7 +457,7 @@ private:
             if (result.toggleWalkthrough) toggleWalkthrough();
             if (result.reloadShaders) reloadShaders({}, true);
             if (result.screenshot) pendingScreenshot_ = 1;
-            drawStats(width, height, statsHeight, margin, line);
+            drawStats(stats, width, height, statsHeight, margin, line);
             if (split_) drawSplitLabels(width, margin, line);
         }
         ui_.end();
@@ -466,18 +474,25 @@ private:
         ui_.textAt({dividerX + 1.5f * margin, margin * 1.5f}, right, ui::palette::kHeading);
     }
 
-    void drawStats(int width, int height, float statsHeight, float margin, float line) {
-        float top = float(height) - statsHeight;
-        ui_.box({0.0f, top, float(width), statsHeight}, {0, 0, 0, 200});
-        std::string first = "frame " + formatMs(frameMs_) + " ms (" + std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) +
-                            " fps)  GPU timers:";
-        for (const PassTiming& t : renderer_->passTimings()) first += " " + t.name + " " + formatMs(t.gpuMs);
-        first += renderer_->passTimings().empty() ? " (pending)" : " ms";
-        // Passes re-run by the last material edit (e.g. wang2020's quadtree / DPF accumulation / prefilter), wall ms.
-        if (!renderer_->lastEditPasses().empty()) {
-            first += "  | last edit:";
-            for (const PassTiming& t : renderer_->lastEditPasses()) first += " " + t.name + " " + formatMs(t.wallMs);
-            first += " ms";
+    struct StatsLine {
+        std::string text;
+        bool dim = false;
+    };
+    // The stats strip: frame time and GPU pass timers (on their own line when they do not fit beside it), the
+    // renderer note and camera, and the passes of the last material edit (e.g. wang2020's quadtree, DPF
+    // accumulation, prefilter; wall ms) while there are any.
+    std::vector<StatsLine> statsText(float available) const {
+        std::vector<StatsLine> lines;
+        std::string frame = "frame " + formatMsShort(frameMs_) + " ms (" +
+                            std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) + " fps)";
+        std::string timers = "GPU ms:";
+        for (const PassTiming& t : renderer_->passTimings()) timers += " " + t.name + " " + formatMsShort(t.gpuMs);
+        if (renderer_->passTimings().empty()) timers += " (pending)";
+        if (float(ui::textWidth(frame + " | " + timers, ui_.scale())) <= available) {
+            lines.push_back({frame + " | " + timers});
+        } else {
+            lines.push_back({frame});
+            lines.push_back({timers});
         }
         const Camera& c = fly_.camera();
         char where[160];
@@ -486,9 +501,27 @@ private:
                       renderer_->settings().ibl.c_str(),
                       renderer_->accumulating() ? (" " + std::to_string(sampleIndex_ + 1) + " spp").c_str() : "",
                       captured_ ? "  mouse captured (C/Esc)" : "");
-        std::string second = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe) | " : "";
-        second += where;
+        std::string note = softwareRenderer_ ? "GPU timers unreliable on software renderers (llvmpipe)" : "";
+        if (note.empty()) {
+            lines.push_back({where, true});
+        } else if (float(ui::textWidth(note + " | " + where, ui_.scale())) <= available) {
+            lines.push_back({note + " | " + where, true});
+        } else {
+            lines.push_back({note, true});
+            lines.push_back({where, true});
+        }
+        if (!renderer_->lastEditPasses().empty()) {
+            std::string edits = "last edit:";
+            for (const PassTiming& t : renderer_->lastEditPasses()) edits += " " + t.name + " " + formatMsShort(t.wallMs);
+            lines.push_back({edits + " ms"});
+        }
+        return lines;
+    }
 
+    void drawStats(const std::vector<StatsLine>& stats, int width, int height, float statsHeight, float margin,
+                   float line) {
+        float top = float(height) - statsHeight;
+        ui_.box({0.0f, top, float(width), statsHeight}, {0, 0, 0, 200});
         if (now_ < messageUntil_) {
             // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner.
             float textW = float(ui::textWidth(message_, ui_.scale()));
@@ -496,8 +529,9 @@ private:
             ui_.box({float(width) - boxW - margin, margin, boxW, line + margin}, {0, 0, 0, 200});
             ui_.textAt({float(width) - boxW, margin + margin * 0.5f}, message_, ui::palette::kHeading, boxW - margin);
         }
-        ui_.textAt({margin, top + margin}, first, ui::palette::kText, float(width) - 2.0f * margin);
-        ui_.textAt({margin, top + margin + line}, second, ui::palette::kDim, float(width) - 2.0f * margin);
+        for (size_t i = 0; i < stats.size(); ++i)
+            ui_.textAt({margin, top + margin + float(i) * line}, stats[i].text,
+                       stats[i].dim ? ui::palette::kDim : ui::palette::kText, float(width) - 2.0f * margin);
     }
 
     // ---- frame ----
