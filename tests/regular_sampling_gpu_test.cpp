@@ -329,7 +329,7 @@ TEST(RegularSamplingGpu, ErrorAgainstTheReferenceUnderSmallBrightSpots) {
         }
         // The paper's setting (Sec. 8: Gaussian 6x6 pyramid for both methods, no MIP bias): regular has the lower
         // RMSE at the paper's sample count. With the environment's box chain, or with each method's best MIP bias,
-        // it does not (measured in rmse_table.md, see docs-draft/regular_sampling.md).
+        // it does not (measured in rmse_table.md, see docs/regular_sampling.md).
         EXPECT_LT(regularGauss6[0], fisGauss6[0]) << "regular vs fis at the paper's count, Gaussian 6x6 pyramid";
         // Both estimators approach the reference as samples grow (Fig. 9-10).
         EXPECT_LT(regularErrors[1], regularErrors[0]);

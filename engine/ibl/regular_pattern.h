@@ -4,7 +4,7 @@
 // CPU whenever the material changes and uploaded (engine/ibl/regular_resources.cpp); shaders/ibl/regular.glsl
 // mirrors pixelsPerSample and the estimator. Shading frame: x = t, y = b, z = n.
 //
-// Ring placement (Eq. 12-13 are ambiguous, see docs-draft/regular_sampling.md): nc counts circles, and with s1 the
+// Ring placement (Eq. 12-13 are ambiguous, see docs/regular_sampling.md): nc counts circles, and with s1 the
 // pole sample is the first (degenerate) circle: s1 rings sit at theta = k s1, k = 0 .. nc-1 (pole + nc-1 rings);
 // with s2 the rings sit at theta = k s2, k = 1 .. nc. theta_0 is the first non-degenerate ring. Ring sizes: see
 // RingRule. For nc = 3: s1 gives 1 + 6 + 12 = 19 and s2 4 + 10 + 16 = 30 (Fig. 4) under RingRule::Arc; the
