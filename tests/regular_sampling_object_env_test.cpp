@@ -28,27 +28,46 @@ int redTexels(const std::vector<float>& face) {
     return n;
 }
 
-TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange) {
-    auto context = createHeadlessContext(Backend::Egl);
-    Scene scene = loadScene("sphere");
-    uint32_t glossy = 0;
-    for (uint32_t i = 0; i < scene.instances.size(); ++i)
-        if (scene.materials[scene.instances[i].material].name == "sphere") glossy = i;
-    // A red diffuse neighbour 1.5 units along +x of the glossy sphere.
+// The built-in sphere scene plus a red diffuse copy of its glossy sphere (the last instance): the neighbour.
+struct SphereAndNeighbour {
+    Scene scene;
+    uint32_t glossy = 0;   // instance index of the glossy sphere
+    glm::vec3 centre{};    // its centroid
+    // A transform for the neighbour: the glossy sphere scaled by `scale` about its centre, then moved by `offset`.
+    glm::mat4 place(glm::vec3 offset, float scale) const {
+        return glm::translate(glm::mat4(1.0f), centre + offset) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
+               glm::translate(glm::mat4(1.0f), -centre);
+    }
+};
+
+SphereAndNeighbour sphereWithRedNeighbour(glm::vec3 offset, float scale) {
+    SphereAndNeighbour r;
+    r.scene = loadScene("sphere");
+    for (uint32_t i = 0; i < r.scene.instances.size(); ++i)
+        if (r.scene.materials[r.scene.instances[i].material].name == "sphere") r.glossy = i;
     Material red;
     red.name = "red";
     red.baseColor = {1.0f, 0.0f, 0.0f, 1.0f};
     red.metallic = 0.0f;
-    red.alpha = 0.5f;
-    scene.materials.push_back(red);
-    Instance neighbour = scene.instances[glossy];
-    neighbour.material = uint32_t(scene.materials.size() - 1);
-    const glm::vec3 centre = instanceCentroid(scene, scene.instances[glossy]);
-    const glm::vec3 offset(1.5f, 0.6f, -0.4f);   // off-axis, so a flipped or rotated face would be caught
-    neighbour.transform = glm::translate(glm::mat4(1.0f), centre + offset) *
-                          glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)) *
-                          glm::translate(glm::mat4(1.0f), -centre);
-    scene.instances.push_back(neighbour);
+    r.scene.materials.push_back(red);
+    r.centre = instanceCentroid(r.scene, r.scene.instances[r.glossy]);
+    Instance neighbour = r.scene.instances[r.glossy];
+    neighbour.material = uint32_t(r.scene.materials.size() - 1);
+    neighbour.transform = r.place(offset, scale);
+    r.scene.instances.push_back(neighbour);
+    return r;
+}
+
+TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange) {
+    auto context = createHeadlessContext(Backend::Egl);
+    // A red diffuse neighbour 1.5 units along +x of the glossy sphere, off-axis, so a flipped or rotated face would
+    // be caught.
+    const glm::vec3 offset(1.5f, 0.6f, -0.4f);
+    SphereAndNeighbour rig = sphereWithRedNeighbour(offset, 0.5f);
+    Scene& scene = rig.scene;
+    const uint32_t glossy = rig.glossy;
+    const glm::vec3 centre = rig.centre;
+    scene.materials.back().alpha = 0.5f;
 
     const int size = 32;
     ObjectEnvironmentMaps maps(defaultShaderDir(), size, PyramidFilter::Gauss4);
@@ -91,27 +110,13 @@ TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange
 // stands, and the reflection moves when the neighbour moves; without object maps there is no red reflection.
 TEST(RegularSamplingObjectEnvironment, ReflectionFollowsAMovedNeighbour) {
     auto context = createHeadlessContext(Backend::Egl);
-    Scene scene = loadScene("sphere");
-    uint32_t glossy = 0;
-    for (uint32_t i = 0; i < scene.instances.size(); ++i)
-        if (scene.materials[scene.instances[i].material].name == "sphere") glossy = i;
+    SphereAndNeighbour rig = sphereWithRedNeighbour(glm::vec3(1.6f, 0.0f, 0.3f), 0.6f);
+    Scene& scene = rig.scene;
+    const uint32_t glossy = rig.glossy;
     const uint32_t sphereMaterial = scene.instances[glossy].material;
     scene.materials[sphereMaterial].metallic = 1.0f;
     scene.materials[sphereMaterial].glinty = false;
-    Material red;
-    red.name = "red";
-    red.baseColor = {1.0f, 0.0f, 0.0f, 1.0f};
-    red.metallic = 0.0f;
-    scene.materials.push_back(red);
-    const glm::vec3 centre = instanceCentroid(scene, scene.instances[glossy]);
-    Instance neighbour = scene.instances[glossy];
-    neighbour.material = uint32_t(scene.materials.size() - 1);
-    auto placeNeighbour = [&](float x) {
-        return glm::translate(glm::mat4(1.0f), centre + glm::vec3(x, 0.0f, 0.3f)) *
-               glm::scale(glm::mat4(1.0f), glm::vec3(0.6f)) * glm::translate(glm::mat4(1.0f), -centre);
-    };
-    neighbour.transform = placeNeighbour(1.6f);
-    scene.instances.push_back(neighbour);
+    auto placeNeighbour = [&](float x) { return rig.place(glm::vec3(x, 0.0f, 0.3f), 0.6f); };
     // Sun from above and in front, so both neighbour positions are lit alike in the per-object maps.
     for (Light& light : scene.lights) {
         light.type = LightType::Directional;

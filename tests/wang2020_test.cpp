@@ -142,6 +142,59 @@ struct GlintMaterial {
     float alpha, gamma, particles;
 };
 
+// A 256x256 view of tests/data/wang2020_point.json with the method wang2020 for material m (tables at 45x45x90),
+// plus `extraSets`.
+RenderRequest wangRequest(const GlintMaterial& m, const std::string& camera, const std::vector<std::string>& extraSets) {
+    RenderRequest request;
+    request.scene = kScene;
+    request.camera = camera;
+    request.width = request.height = 256;
+    request.settings.method = "wang2020";
+    std::vector<std::string> sets = {"material.alpha=" + std::to_string(m.alpha),
+                                     "wang2020.roughness=" + std::to_string(m.alpha),
+                                     "wang2020.gamma=" + std::to_string(m.gamma),
+                                     "wang2020.particles=" + std::to_string(m.particles), "wang2020.table_scale=2"};
+    sets.insert(sets.end(), extraSets.begin(), extraSets.end());
+    for (const std::string& s : sets) request.settings.apply(s);
+    return request;
+}
+
+// The same view lit by environment `env` through --ibl wang2020 only (lights off).
+RenderRequest wangEnvironmentRequest(const GlintMaterial& m, const std::string& camera, const std::string& env,
+                                     std::vector<std::string> extraSets = {}) {
+    extraSets.push_back("light.intensity=0");
+    RenderRequest request = wangRequest(m, camera, extraSets);
+    request.environment = env;
+    request.settings.ibl = "wang2020";
+    return request;
+}
+
+std::vector<float> renderAov(OffscreenSession& session, const RenderRequest& request, const char* aov) {
+    RenderRequest r = request;
+    r.settings.debugView = findAov(aov).viewId;
+    return session.render(r).hdr;
+}
+
+// The pixel footprint read back from the G-buffer AOVs (uv, duv/dx, duv/dy) of pixel p.
+w::Footprint footprintAt(const std::vector<float>& uv, const std::vector<float>& dx, const std::vector<float>& dy,
+                         size_t p) {
+    return {glm::dvec2(uv[4 * p], uv[4 * p + 1]), glm::dvec2(dx[4 * p], dx[4 * p + 1]),
+            glm::dvec2(dy[4 * p], dy[4 * p + 1])};
+}
+
+// The explicit-particle reference's environment glint at a footprint of the plane y = 0 (UV = (x, z); shading
+// frame t = +x, b = +z, n = +y), seen from `eye`, times Schlick's F with f0 = 0.9 as the shader applies it.
+// worldRadiance(direction) is the environment's radiance along a world direction.
+template <class WorldRadiance>
+glm::vec3 explicitEnvironmentGlint(const w::Quadtree& tree, const w::Footprint& fp, glm::vec3 eye, float alpha,
+                                   WorldRadiance worldRadiance) {
+    glm::vec3 toEye = glm::normalize(eye - glm::vec3(float(fp.center.x), 0.0f, float(fp.center.y)));
+    glm::vec3 wo(toEye.x, toEye.z, toEye.y);
+    glm::vec3 L = w::explicitParticleEnvironment(
+        tree, fp, wo, alpha, [&](glm::vec3 wi) { return worldRadiance(glm::vec3(wi.x, wi.z, wi.y)); });
+    return L * (0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0)));
+}
+
 // Per pixel of a 256x256 view of tests/data/wang2020_point.json: the shader's D (--aov glint), the explicit
 // reference's D on the same footprint (uv, duv/dx, duv/dy read back from the G-buffer AOVs), the expected
 // particle count and the radiance weight I / (d^2 4 cos_o) that turns D into the glint's radiance (F G aside,
@@ -154,26 +207,12 @@ struct PixelPair {
 std::vector<PixelPair> renderPairs(const GlintMaterial& m, const std::string& camera, int seeds = 1,
                                    const std::vector<std::string>& extraSets = {}) {
     useTestCache();
-    RenderRequest request;
-    request.scene = kScene;
-    request.camera = camera;
-    request.width = request.height = 256;
-    request.settings.method = "wang2020";
-    std::vector<std::string> sets = {"material.alpha=" + std::to_string(m.alpha),
-                                     "wang2020.roughness=" + std::to_string(m.alpha),
-                                     "wang2020.gamma=" + std::to_string(m.gamma),
-                                     "wang2020.particles=" + std::to_string(m.particles), "wang2020.table_scale=2"};
-    sets.insert(sets.end(), extraSets.begin(), extraSets.end());
-    for (const std::string& s : sets) request.settings.apply(s);
+    RenderRequest request = wangRequest(m, camera, extraSets);
     OffscreenSession session(request);
     std::vector<PixelPair> pairs;
     for (int seed = 1; seed <= seeds; ++seed) {
         request.settings.apply("wang2020.seed=" + std::to_string(seed));
-        auto aov = [&](const char* name) {
-            RenderRequest r = request;
-            r.settings.debugView = findAov(name).viewId;
-            return session.render(r).hdr;
-        };
+        auto aov = [&](const char* name) { return renderAov(session, request, name); };
         std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), glint = aov("glint");
         const Scene& scene = session.scene();
         glm::vec3 eye{};
@@ -185,7 +224,7 @@ std::vector<PixelPair> renderPairs(const GlintMaterial& m, const std::string& ca
         w::Quadtree tree = w::buildQuadtree(m.particles, int(depth), uint32_t(seed));
         for (size_t p = 0; p < uv.size() / 4; ++p) {
             glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
-            w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
+            w::Footprint fp = footprintAt(uv, dx, dy, p);
             glm::vec3 pos(u.x, 0.0f, u.y);  // plane y = 0, UV = (x, z); shading frame t = +x, b = +z, n = +y
             glm::vec3 toEye = glm::normalize(eye - pos), toLight = light - pos;
             float d2 = glm::dot(toLight, toLight);
@@ -412,18 +451,7 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
     if (std::filesystem::exists(hdr)) envs.push_back(hdr);
     for (const std::string& env : envs)
         for (GlintMaterial m : {GlintMaterial{0.1f, 6.0f, 1e6f}, GlintMaterial{0.5f, 2.0f, 1e5f}}) {
-            RenderRequest request;
-            request.scene = kScene;
-            request.camera = "top";
-            request.width = request.height = 256;
-            request.environment = env;
-            request.settings.method = "wang2020";
-            request.settings.ibl = "wang2020";
-            for (const std::string& s :
-                 {"material.alpha=" + std::to_string(m.alpha), "wang2020.roughness=" + std::to_string(m.alpha),
-                  "wang2020.gamma=" + std::to_string(m.gamma), "wang2020.particles=" + std::to_string(m.particles),
-                  std::string("wang2020.table_scale=2"), std::string("light.intensity=0")})
-                request.settings.apply(s);
+            RenderRequest request = wangEnvironmentRequest(m, "top", env);
             int seeds = m.particles < 1e6f ? 4 : 1;
             OffscreenSession session(request);
             ImageF image;
@@ -433,25 +461,15 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
             double gpu = 0, ref = 0;
             for (int seed = 1; seed <= seeds; ++seed) {
                 request.settings.apply("wang2020.seed=" + std::to_string(seed));
-                auto aov = [&](const char* name) {
-                    RenderRequest r = request;
-                    r.settings.debugView = findAov(name).viewId;
-                    return session.render(r).hdr;
-                };
+                auto aov = [&](const char* name) { return renderAov(session, request, name); };
                 std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), final = aov("final");
                 w::Quadtree tree = w::buildQuadtree(m.particles, 11, uint32_t(seed));
                 for (size_t p = 0; p < uv.size() / 4; ++p) {
-                    glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
-                    w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]),
-                                    glm::dvec2(dy[4 * p], dy[4 * p + 1])};
-                    glm::vec3 toEye = glm::normalize(eye - glm::vec3(u.x, 0.0f, u.y));
-                    glm::vec3 wo(toEye.x, toEye.z, toEye.y);
-                    glm::vec3 L = w::explicitParticleEnvironment(tree, fp, wo, m.alpha, [&](glm::vec3 wi) {
-                        if (constant) return glm::vec3(1.0f);
-                        return envref::sampleEquirect(image, glm::vec3(wi.x, wi.z, wi.y));
+                    glm::vec3 L = explicitEnvironmentGlint(tree, footprintAt(uv, dx, dy, p), eye, m.alpha,
+                                                           [&](glm::vec3 world) {
+                        return constant ? glm::vec3(1.0f) : envref::sampleEquirect(image, world);
                     });
-                    float f = 0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0));  // Schlick, f0 = 0.9 (as the shader)
-                    ref += (L.x + L.y + L.z) / 3.0 * f;
+                    ref += (L.x + L.y + L.z) / 3.0;
                     gpu += (final[4 * p] + final[4 * p + 1] + final[4 * p + 2]) / 3.0;
                 }
             }
@@ -525,15 +543,7 @@ TEST(Wang2020Editing, RendererRunsOnlyNeededPasses) {
 TEST(Wang2020Golden, TiltedViewAcrossThresholds) {
     useTestCache();
     for (const char* particles : {"2.5e5", "3.4e6"}) {
-        RenderRequest request;
-        request.scene = kScene;
-        request.camera = "tilted";
-        request.width = request.height = 256;
-        request.settings.method = "wang2020";
-        for (std::string s : {"wang2020.gamma=4", "wang2020.roughness=0.4", "material.alpha=0.4",
-                              "wang2020.table_scale=2", "exposure=-1"})
-            request.settings.apply(s);
-        request.settings.apply(std::string("wang2020.particles=") + particles);
+        RenderRequest request = wangRequest(GlintMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"exposure=-1"});
         RenderResult result = renderOffscreen(request);
         EXPECT_EQ(result.stats["counts"]["non_finite_values"].get<size_t>(), 0u);
         test::GoldenComparison comparison = test::compareWithGolden(std::string("wang2020_tilted_n") + particles,
@@ -626,20 +636,11 @@ namespace {
 // neighbouring bins within [E_lo, E_hi): a hard change of texture at a scale threshold shows as one large step.
 double largestTextureStep(const std::string& particles, const std::string& transition, double eLo, double eHi) {
     useTestCache();
-    RenderRequest request;
-    request.scene = kScene;
-    request.camera = "tilted";
-    request.width = request.height = 256;
-    request.settings.method = "wang2020";
-    for (std::string s : std::vector<std::string>{"wang2020.gamma=4", "wang2020.roughness=0.4", "material.alpha=0.4",
-                                                  "wang2020.table_scale=2", "wang2020.particles=" + particles,
-                                                  "wang2020.transition=" + transition})
-        request.settings.apply(s);
+    RenderRequest request =
+        wangRequest(GlintMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"wang2020.transition=" + transition});
     OffscreenSession session(request);
     std::vector<float> radiance = session.render(request).hdr;
-    RenderRequest footprint = request;
-    footprint.settings.debugView = findAov("footprint").viewId;
-    std::vector<float> expected = session.render(footprint).hdr;
+    std::vector<float> expected = renderAov(session, request, "footprint");
     const int bins = int(std::round(4 * std::log2(eHi / eLo)));
     std::vector<double> sum(size_t(bins), 0.0), sum2(size_t(bins), 0.0), count(size_t(bins), 0.0);
     for (int y = 0; y < 256; ++y)
@@ -670,14 +671,15 @@ double largestTextureStep(const std::string& particles, const std::string& trans
 // "No visible seam" (Sec. 4.3) as a measurement: with the paper's hard thresholds the texture (CV of the radiance)
 // jumps at the micro/meso threshold; with the default one-octave transition band the largest step between
 // neighbouring quarter-octave bins of E stays below ln 2 (measured 0.62 at the micro/meso threshold, 0.15 at
-// meso/macro), at both thresholds. The hard switch (measured 1.76) is asserted to exceed it, so the measure does
-// detect the seam.
+// meso/macro), at both thresholds. The hard switch at micro/meso (measured 1.76) is asserted to exceed it, so the
+// measure does detect the seam.
 TEST(Wang2020Render, NoTextureSeamAtThresholds) {
     const double limit = std::log(2.0);
     EXPECT_GT(largestTextureStep("2.5e5", "0", 1.0, 32.0), limit);
     EXPECT_LT(largestTextureStep("2.5e5", "1", 1.0, 32.0), limit);
     EXPECT_LT(largestTextureStep("3.4e6", "1", 16.0, 256.0), limit);
-    if (std::getenv("GLIMMER_WANG2020_SEAM_REPORT")) largestTextureStep("3.4e6", "0", 16.0, 256.0);  // docs only
+    // Around E = 64 even the hard switch shows none after the 3-tap glint blur (measured ln 1.16 both ways).
+    EXPECT_LT(largestTextureStep("3.4e6", "0", 16.0, 256.0), limit);
 }
 
 namespace {
@@ -746,26 +748,12 @@ TEST(Wang2020Environment, SnowAndGlitterClothNextToReference) {
     for (const Look& look : {Look{"snow", {0.1f, 6.0f, 1e6f}, {1.0f, 1.0f, 1.0f}},
                              Look{"glitter_cloth", {0.5f, 2.0f, 1e5f}, {1.0f, 0.55f, 0.75f}}}) {
         const GlintMaterial& m = look.m;
-        RenderRequest request;
-        request.scene = kScene;
-        request.camera = "tilted";
-        request.width = request.height = 256;
-        request.environment = hdr;
-        request.settings.method = "wang2020";
-        request.settings.ibl = "wang2020";
-        for (const std::string& s :
-             {"material.alpha=" + std::to_string(m.alpha), "wang2020.roughness=" + std::to_string(m.alpha),
-              "wang2020.gamma=" + std::to_string(m.gamma), "wang2020.particles=" + std::to_string(m.particles),
-              "wang2020.color_r=" + std::to_string(look.color.x), "wang2020.color_g=" + std::to_string(look.color.y),
-              "wang2020.color_b=" + std::to_string(look.color.z), std::string("wang2020.table_scale=2"),
-              std::string("light.intensity=0")})
-            request.settings.apply(s);
+        RenderRequest request = wangEnvironmentRequest(
+            m, "tilted", hdr,
+            {"wang2020.color_r=" + std::to_string(look.color.x), "wang2020.color_g=" + std::to_string(look.color.y),
+             "wang2020.color_b=" + std::to_string(look.color.z)});
         OffscreenSession session(request);
-        auto aov = [&](const char* name) {
-            RenderRequest r = request;
-            r.settings.debugView = findAov(name).viewId;
-            return session.render(r).hdr;
-        };
+        auto aov = [&](const char* name) { return renderAov(session, request, name); };
         std::vector<float> uv = aov("uv"), dx = aov("duvdx"), dy = aov("duvdy"), shader = aov("final");
         glm::vec3 eye{};
         for (const Camera& c : session.scene().cameras)
@@ -776,15 +764,10 @@ TEST(Wang2020Environment, SnowAndGlitterClothNextToReference) {
             noLights[4 * p + 3] = 1.0f;   // mask set, no light glints: the occlusion blur leaves visibility 1
             reference[4 * p + 3] = 1.0f;  // visible (a plane under the sky)
             if (shader[4 * p + 3] == 0.0f) continue;  // background
-            glm::vec2 u(uv[4 * p], uv[4 * p + 1]);
-            w::Footprint fp{glm::dvec2(u), glm::dvec2(dx[4 * p], dx[4 * p + 1]), glm::dvec2(dy[4 * p], dy[4 * p + 1])};
-            glm::vec3 toEye = glm::normalize(eye - glm::vec3(u.x, 0.0f, u.y));
-            glm::vec3 wo(toEye.x, toEye.z, toEye.y);
-            glm::vec3 L = w::explicitParticleEnvironment(tree, fp, wo, m.alpha, [&](glm::vec3 wi) {
-                return envref::sampleEquirect(image, glm::vec3(wi.x, wi.z, wi.y));
+            glm::vec3 L = explicitEnvironmentGlint(tree, footprintAt(uv, dx, dy, p), eye, m.alpha, [&](glm::vec3 world) {
+                return envref::sampleEquirect(image, world);
             });
-            float f = 0.9f + 0.1f * float(std::pow(1.0 - wo.z, 5.0));  // Schlick, f0 = 0.9 (as the shader)
-            for (int c = 0; c < 3; ++c) reference[4 * p + size_t(c)] = L[c] * f * look.color[c];
+            for (int c = 0; c < 3; ++c) reference[4 * p + size_t(c)] = L[c] * look.color[c];
         }
         std::vector<float> blurred = glintpost::referencePostPass(reference, noLights, 256, 256, 9, 3);
         double gpu = 0, ref = 0;

@@ -20,18 +20,9 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= uint(u_probeIn.length())) return;
     ProbeInput probe = u_probeIn[i];
-    GlintSurface s;
-    s.uv = probe.uvDuvdx.xy;
-    s.duvdx = probe.uvDuvdx.zw;
-    s.duvdy = probe.duvdyAlphaNdf.xy;
-    s.alpha = probe.duvdyAlphaNdf.z;
-    s.ndf = int(probe.duvdyAlphaNdf.w + 0.5);
-    s.densityScale = probe.halfDensity.w;
-    s.materialId = 0;
-    s.pixel = ivec2(int(i), 0);
-    s.n = vec3(0.0, 0.0, 1.0);
-    s.t = vec3(1.0, 0.0, 0.0);
-    s.b = vec3(0.0, 1.0, 0.0);
+    GlintSurface s = makeGlintSurface(probe.uvDuvdx.xy, probe.uvDuvdx.zw, probe.duvdyAlphaNdf.xy,
+                                      probe.duvdyAlphaNdf.z, int(probe.duvdyAlphaNdf.w + 0.5), probe.halfDensity.w,
+                                      ivec2(int(i), 0), mat3(1.0));
     GlintPixel px = glintSetup(s);
     vec3 h = normalize(probe.halfDensity.xyz);
     vec3 wo = vec3(0.0, 0.0, 1.0);

@@ -44,16 +44,5 @@ vec3 regularLobeRadiance(KurtLobeGpu lobe, vec3 wo, mat3 shadingToWorld, vec3 r0
     return lobe.roughness.z * sum / float(count);
 }
 
-vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat3 worldToShading, vec3 diffuseAlbedo,
-                 vec3 f0, bool glinty, uint sampleIndex) {
-    vec3 radiance = diffuseAlbedo * envDiffuse(s.n);   // kd / pi * irradiance (Eq. 1, diffuse part)
-    if (wo.z <= 0.0) return radiance;
-    mat3 shadingToWorld = transpose(worldToShading);
-    ivec2 lobes = kurtMaterialLobes(s.materialId);
-    kurtSelectObjectMap(s.materialId);
-    for (int l = 0; l < lobes.y; ++l) {
-        KurtLobeGpu lobe = u_kurtLobes[lobes.x + l];
-        radiance += regularLobeRadiance(lobe, wo, shadingToWorld, kurtR0(lobe, f0));
-    }
-    return radiance;
-}
+#define KURT_LOBE_RADIANCE regularLobeRadiance
+#include "ibl/kurt_filtered_ibl.glsl"
