@@ -4,6 +4,7 @@
 //   0 RGBA32F  uv.xy, duv/dx.xy        1 RGBA32F  duv/dy.xy, material id, bitangent sign
 //   2 RGBA16F  normal.xyz, alpha       3 RGBA16F  tangent.xyz, metallic
 //   4 RGBA8    base colour.rgb, glint density mask
+#include "common/bindings.glsl"
 #include "common/frame.glsl"
 
 in vec3 v_normal;
@@ -14,11 +15,11 @@ layout(location = 2) uniform int u_materialIndex;
 layout(location = 3) uniform int u_textureMask;     // bit 0 base colour, 1 metal-rough, 2 normal, 3 occlusion, 4 glint mask
 layout(location = 4) uniform mat3 u_uvTransform;    // KHR_texture_transform for texture lookups only
 
-layout(binding = 0) uniform sampler2D t_baseColor;
-layout(binding = 1) uniform sampler2D t_metallicRoughness;
-layout(binding = 2) uniform sampler2D t_normal;
-layout(binding = 3) uniform sampler2D t_occlusion;
-layout(binding = 4) uniform sampler2D t_glintMask;
+layout(binding = UNIT_MATERIAL_BASE_COLOR) uniform sampler2D t_baseColor;
+layout(binding = UNIT_MATERIAL_METALLIC_ROUGHNESS) uniform sampler2D t_metallicRoughness;
+layout(binding = UNIT_MATERIAL_NORMAL) uniform sampler2D t_normal;
+layout(binding = UNIT_MATERIAL_OCCLUSION) uniform sampler2D t_occlusion;
+layout(binding = UNIT_MATERIAL_GLINT_MASK) uniform sampler2D t_glintMask;
 
 layout(location = 0) out vec4 o_uvDuvdx;
 layout(location = 1) out vec4 o_duvdyMaterial;

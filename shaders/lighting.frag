@@ -1,6 +1,7 @@
 // Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
 // Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
 // metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+#include "common/bindings.glsl"
 #define GLIMMER_LIGHTING_PASS 1   // lets method files read lighting-pass data (u_materials) that probes lack
 #include "common/frame.glsl"
 #include "common/brdf.glsl"
@@ -10,8 +11,8 @@
 
 #ifdef GLINT_POST_PASS
 // Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
-// loop and the IBL mode put glint radiance here instead of into o_color; the renderer blurs the occlusion, multiplies,
-// blurs the glints and adds them (shaders/post/). The IBL mode sets the environment glint (before occlusion) and
+// loop and the IBL mode put glint radiance here instead of into o_color; the method's passes blur the occlusion, multiply,
+// blur the glints and add them (shaders/post/). The IBL mode sets the environment glint (before occlusion) and
 // its visibility along the mirror direction.
 vec3 g_postEnvironmentGlint = vec3(0.0);
 float g_postVisibility = 1.0;
@@ -22,12 +23,12 @@ layout(location = 2) out vec4 o_glintLights;       // rgb: light glints, a: 1 on
 #include GLINT_METHOD_FILE
 #include IBL_MODE_FILE
 
-layout(binding = 0) uniform sampler2D g_uvDuvdx;
-layout(binding = 1) uniform sampler2D g_duvdyMaterial;
-layout(binding = 2) uniform sampler2D g_normalAlpha;
-layout(binding = 3) uniform sampler2D g_tangentMetallic;
-layout(binding = 4) uniform sampler2D g_baseColorMask;
-layout(binding = 5) uniform sampler2D g_depth;
+layout(binding = UNIT_GBUFFER_UV_DUVDX) uniform sampler2D g_uvDuvdx;
+layout(binding = UNIT_GBUFFER_DUVDY_MATERIAL) uniform sampler2D g_duvdyMaterial;
+layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
+layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
+layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
+layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;

@@ -1,8 +1,9 @@
 // HDR radiance to display: exposure, ACES-fitted curve (Narkowicz 2015), sRGB encoding.
 // Debug views (u_viewport.w != 0) are shown without tone mapping, clamped, so channels read directly.
+#include "common/bindings.glsl"
 #include "common/frame.glsl"
 
-layout(binding = 0) uniform sampler2D t_hdr;
+layout(binding = UNIT_TONEMAP_HDR) uniform sampler2D t_hdr;
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
 

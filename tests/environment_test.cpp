@@ -15,7 +15,7 @@
 #include "core/image_io.h"
 #include "platform/context.h"
 #include "render/environment.h"
-#include "render/environment_reference.h"
+#include "reference/environment_reference.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"

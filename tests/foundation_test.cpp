@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "render/aov.h"
-#include "render/brdf_reference.h"
+#include "reference/brdf_reference.h"
 #include "render/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"

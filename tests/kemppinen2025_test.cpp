@@ -15,7 +15,7 @@
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "glints/kemppinen2025_reference.h"
+#include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
 #include "render/aov.h"

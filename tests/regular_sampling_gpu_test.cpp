@@ -12,9 +12,11 @@
 #include <filesystem>
 #include <numbers>
 
+#include "core/files.h"
 #include "core/image_io.h"
 #include "ibl/ibl_estimators.h"
 #include "ibl/kurt_ibl_resources.h"
+#include "render/renderer_capture.h"
 #include "platform/context.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
@@ -128,19 +130,20 @@ TEST(RegularSamplingGpu, PatternsAreRebuiltOnlyWhenParametersChange) {
     specs.push_back({"samples", 14.0f, 1.0f, 512.0f, "", {}, true});
     specs.push_back({"xi0", 0.2f, 0.001f, 0.9f, ""});
     ibl::KurtIblResources resources(specs, true);
+    RendererCapture capture(defaultShaderDir());   // unused: no per-object maps here
     Scene scene;
     scene.materials.resize(2);
     scene.materials[0].alpha = 0.1f;
     scene.materials[1].alpha = 0.3f;
     ParamValues values;
-    resources.prepare(values, scene, 0);
-    resources.prepare(values, scene, 0);
+    resources.prepare(values, scene, 0, capture);
+    resources.prepare(values, scene, 0, capture);
     EXPECT_EQ(resources.uploads(), 1);
     values["samples"] = 30.0f;
-    resources.prepare(values, scene, 0);
+    resources.prepare(values, scene, 0, capture);
     EXPECT_EQ(resources.uploads(), 2);
     scene.materials[1].alpha = 0.2f;   // a material edit
-    resources.prepare(values, scene, 0);
+    resources.prepare(values, scene, 0, capture);
     EXPECT_EQ(resources.uploads(), 3);
     // Per material: each material's lobe takes its own roughness unless ibl.mx / ibl.my override it.
     auto a = ibl::kurtLobesForMaterial(scene.materials[0], specs, values, 30, 0.2);
@@ -162,18 +165,18 @@ TEST(RegularSamplingGpu, PatternsAreRebuiltOnlyWhenParametersChange) {
     gl::Texture source = ibl::createPyramidCube(16, GL_RGBA32F);
     const float grey[4] = {0.5f, 0.5f, 0.5f, 1.0f};
     glClearTexImage(source.id(), 0, GL_RGBA, GL_FLOAT, grey);
-    filtered.prepare(values, scene, source.id());
+    filtered.prepare(values, scene, source.id(), capture);
     EXPECT_EQ(filtered.pyramidBuilds(), 0) << "pyramid=source reads the environment's own chain";
     values["pyramid"] = 3.0f;
-    filtered.prepare(values, scene, source.id());
-    filtered.prepare(values, scene, source.id());
+    filtered.prepare(values, scene, source.id(), capture);
+    filtered.prepare(values, scene, source.id(), capture);
     EXPECT_EQ(filtered.pyramidBuilds(), 1);
     values["pyramid"] = 1.0f;
-    filtered.prepare(values, scene, source.id());
+    filtered.prepare(values, scene, source.id(), capture);
     EXPECT_EQ(filtered.pyramidBuilds(), 2);
     const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     glClearTexImage(source.id(), 0, GL_RGBA, GL_FLOAT, white);   // the environment changed in place
-    filtered.prepare(values, scene, source.id());
+    filtered.prepare(values, scene, source.id(), capture);
     EXPECT_EQ(filtered.pyramidBuilds(), 3);
 }
 

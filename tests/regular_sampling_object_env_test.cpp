@@ -8,8 +8,9 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "ibl/object_environment.h"
+#include "render/renderer_capture.h"
 #include "platform/context.h"
-#include "render/environment_reference.h"
+#include "reference/environment_reference.h"
 #include "render/aov.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
@@ -71,7 +72,8 @@ TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange
 
     const int size = 32;
     ObjectEnvironmentMaps maps(defaultShaderDir(), size, PyramidFilter::Gauss4);
-    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    RendererCapture capture(defaultShaderDir());
+    EXPECT_EQ(maps.update(scene, {glossy}, capture), 1);
     EXPECT_NEAR(glm::length(maps.centroid(0) - centre), 0.0f, 1e-4f);
     // Face order +X, -X, ...: the neighbour fills the centre of +X, not of -X.
     EXPECT_GT(redTexels(maps.readFace(0, 0)), 10);
@@ -90,19 +92,19 @@ TEST(RegularSamplingObjectEnvironment, MapsFollowTheSceneAndRerenderOnlyOnChange
         double angle = std::acos(glm::dot(glm::normalize(mean), glm::normalize(glm::dvec3(offset))));
         EXPECT_LT(angle, 0.1) << "radians between the red texels and the neighbour";
     }
-    EXPECT_EQ(maps.update(scene, {glossy}), 0) << "nothing changed: no re-render";
+    EXPECT_EQ(maps.update(scene, {glossy}, capture), 0) << "nothing changed: no re-render";
 
     // Move the neighbour to -x: the map is re-rendered and the red moves to the -X face.
     scene.instances.back().transform = glm::translate(glm::mat4(1.0f), glm::vec3(-2.0f * offset.x, 0.0f, 0.0f)) *
                                        scene.instances.back().transform;
-    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    EXPECT_EQ(maps.update(scene, {glossy}, capture), 1);
     EXPECT_EQ(redTexels(maps.readFace(0, 0)), 0);
     EXPECT_GT(redTexels(maps.readFace(0, 1)), 10);
 
     // Moving the glossy object itself moves the centroid the map is rendered from.
     scene.instances[glossy].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.5f)) *
                                         scene.instances[glossy].transform;
-    EXPECT_EQ(maps.update(scene, {glossy}), 1);
+    EXPECT_EQ(maps.update(scene, {glossy}, capture), 1);
     EXPECT_NEAR(maps.centroid(0).z, centre.z + 0.5f, 1e-4f);
 }
 

@@ -8,8 +8,8 @@
 #include <numeric>
 #include <random>
 
-#include "glints/deliot2023_probe.h"
-#include "glints/zirr2016_reference.h"
+#include "reference/deliot2023_probe.h"
+#include "reference/zirr2016_reference.h"
 #include "platform/context.h"
 #include "render/aov.h"
 #include "render/offscreen.h"

@@ -6,7 +6,7 @@
 #include "glints/methods.h"
 #include "render/aov.h"
 #include "render/environment.h"
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 #include "scene/builtin_scenes.h"
 
 namespace glimmer {

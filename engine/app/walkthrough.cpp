@@ -486,7 +486,8 @@ private:
         std::string frame = "frame " + formatMsShort(frameMs_) + " ms (" +
                             std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) + " fps)";
         std::string timers = "GPU ms:";
-        for (const PassTiming& t : renderer_->passTimings()) timers += " " + t.name + " " + formatMsShort(t.gpuMs);
+        for (const PassTiming& t : renderer_->passTimings())   // NaN: no plausible result (render/passes/pass_timer.h)
+            timers += " " + t.name + " " + (std::isnan(t.gpuMs) ? std::string("n/a") : formatMsShort(t.gpuMs));
         if (renderer_->passTimings().empty()) timers += " (pending)";
         if (float(ui::textWidth(frame + " | " + timers, ui_.scale())) <= available) {
             lines.push_back({frame + " | " + timers});

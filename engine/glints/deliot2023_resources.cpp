@@ -2,7 +2,7 @@
 
 #include "core/clock.h"
 #include "core/log.h"
-#include "glints/deliot2023_reference.h"
+#include "glints/deliot2023_noise.h"
 
 namespace glimmer {
 

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "glints/deliot2023_resources.h"
+#include "glints/wang2020_post_pass.h"
 #include "glints/wang2020_resources.h"
 
 namespace glimmer {
@@ -96,7 +97,8 @@ static GlintMethod wang2020Method() {
              {"blur_glints", 3.0f, 1.0f, 15.0f,
               "taps of the Gaussian blur of the glints (Sec. 4.4; paper 3; 1 = none; odd)", {}, true}},
             createWang2020Resources};
-    method.glintPostPass = true;
+    method.glintPostPass = true;   // Sec. 4.4: the lighting pass leaves the glints to the post pass
+    method.createPasses = glintpost::createPasses;
     return method;
 }
 

@@ -3,6 +3,7 @@
 // Adding a method: write shaders/glints/<name>.glsl with the interface documented in shaders/glints/README.md,
 // add a function returning its GlintMethod below and list it in glintMethods().
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -10,29 +11,49 @@
 #include <vector>
 
 #include "core/params.h"
+#include "gl/program.h"
 
 namespace glimmer {
 
-struct Scene;
-
 // GPU resources a method needs besides its parameters (noise textures, tables). Created once per context when
-// the method is selected; bind() runs before every lighting pass. Methods use texture units 8-15 and
-// buffer bindings 8-15 (the renderer's own stay below 8).
+// the method is selected; bind() runs before every lighting pass. Methods use the texture units and buffer
+// bindings UNIT_/BINDING_METHOD_FIRST..LAST of shaders/common/bindings.glsl (the renderer's own stay below).
 class GlintMethodResources {
 public:
     virtual ~GlintMethodResources() = default;
-    // Optional: runs before bind() with the current parameter values of the method/mode, the scene and the
-    // environment's source cube (0 when none), so resources that depend on them (IBL sample patterns per material,
-    // filtered copies of the environment) can rebuild when they change.
-    virtual void prepare(const ParamValues& values, const Scene& scene, unsigned environmentSource) {
-        (void)values; (void)scene; (void)environmentSource;
-    }
     virtual void bind() = 0;
     // Called before every lighting pass with the method's current parameter values (before bind()): methods
     // whose GPU data depend on parameters rebuild what changed here. Returns the passes that ran (name, wall ms)
     // so the renderer lists them in --stats (material editing, Wang et al. 2020 Sec. 4.5).
     virtual std::vector<std::pair<std::string, double>> update(const ParamValues&) { return {}; }
 };
+
+// What a method's screen-space pass reads and writes in one frame (see MethodPass).
+struct MethodPassFrame {
+    int width = 0, height = 0;
+    const ParamValues* values = nullptr;   // the method's current parameter values
+    int debugView = 0;                     // AovInfo::viewId; 0 = the final image
+    // Weight of this frame's radiance in the HDR mean: 1, or 1 / (k + 1) for sample k of an accumulating IBL mode.
+    float blendWeight = 1.0f;
+    unsigned hdrFramebuffer = 0;           // the HDR radiance target, where the pass adds its result
+    unsigned glintEnvironment = 0;         // the lighting pass's glint targets (GlintMethod::glintPostPass)
+    unsigned glintLights = 0;
+    unsigned depth = 0;                    // the G-buffer's depth (reversed Z)
+    unsigned emptyVao = 0;                 // bound for full-screen triangles
+};
+
+// A pass a method adds after the lighting pass (Wang et al. 2020's Sec. 4.4 post pass is the first). The renderer
+// runs a method's passes in order, each in its own debug group and timer named name(); a pass owns its programs
+// and intermediate targets and sets its complete pipeline state (gl/pipeline_state.h) before drawing.
+class MethodPass {
+public:
+    virtual ~MethodPass() = default;
+    virtual const char* name() const = 0;
+    virtual std::vector<gl::Program*> programs() = 0;   // for hot reload and dependency listing
+    virtual bool runs(const MethodPassFrame& frame) const { return true; }
+    virtual void execute(const MethodPassFrame& frame) = 0;
+};
+using MethodPassList = std::vector<std::unique_ptr<MethodPass>>;
 
 struct GlintMethod {
     std::string id;           // command-line name, e.g. "deliot2023"
@@ -43,11 +64,12 @@ struct GlintMethod {
     std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
     // Optional: creates the method's GPU resources (called with a current context).
     std::function<std::unique_ptr<GlintMethodResources>()> createResources;
-    // Optional screen-space post pass (Wang et al. 2020, Sec. 4.4 "Gaussian Blurring"): the lighting pass writes
-    // the method's glint radiance and its directional occlusion to separate targets (lighting.frag,
-    // GLINT_POST_PASS); the renderer blurs the occlusion with a Gaussian of `blur_occlusion` taps, multiplies,
-    // blurs the glints with one of `blur_glints` taps and adds them (shaders/post/). Such a method declares both
-    // parameters.
+    // Optional: the method's passes after the lighting pass (built with a current context from the shader root;
+    // throws gl::ShaderError like any program build).
+    std::function<MethodPassList(const std::filesystem::path& shaderRoot)> createPasses;
+    // The lighting pass writes the method's glint radiance and its directional occlusion to separate targets
+    // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
+    // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
     bool glintPostPass = false;
 };
 

@@ -1,4 +1,5 @@
 #include "glints/wang2020_prefilter.h"
+#include "common/bindings.glsl"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,7 @@ double Prefilter::run(GLuint dpfTexture, float alpha, float gamma, Estimator est
     glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "u_alpha"), alpha);
     glProgramUniform1f(program_.id(), glGetUniformLocation(program_.id(), "u_gamma"), gamma);
     glProgramUniform1i(program_.id(), glGetUniformLocation(program_.id(), "u_estimator"), int(estimator));
-    glBindTextureUnit(8, dpfTexture);
+    glBindTextureUnit(UNIT_METHOD_FIRST, dpfTexture);   // u_wangDpf, as in the lighting pass
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTableBinding, table_.id());
     glDispatchCompute(GLuint((res.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -3,6 +3,7 @@
 // K = 64), a = filtered DPF P^(n, o) (Eq. 17). Resolutions from roughness as in the paper's Table 2.
 // Two estimators of Eq. 16 (header of the shader): the paper's (default) and a cone form (ours, optional).
 #pragma once
+#include "common/bindings.glsl"
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <vector>
@@ -22,7 +23,7 @@ PrefilterResolution prefilterResolution(float alpha);
 
 class Prefilter {
 public:
-    static constexpr int kTableBinding = 16;  // SSBO read by shaders/ibl/wang2020.glsl (IBL-mode range 16-23)
+    static constexpr int kTableBinding = BINDING_IBL_FIRST;  // SSBO read by shaders/ibl/wang2020.glsl
     explicit Prefilter(const std::filesystem::path& shaderRoot);
     enum class Estimator { Dpf = 0, Cone = 1 };
     // Runs the pass (environment bound at units 6-7 and binding 7, DPF at unit 8); returns its wall time (ms).

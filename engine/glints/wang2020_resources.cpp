@@ -29,19 +29,10 @@ std::shared_ptr<const wang2020::DpfSet> dpfSetFor(int scale) {
     return slot;
 }
 
-thread_local Wang2020Resources* activeResources = nullptr;
-
 }  // namespace
-
-Wang2020Resources* Wang2020Resources::active() { return activeResources; }
-
-Wang2020Resources::~Wang2020Resources() {
-    if (activeResources == this) activeResources = nullptr;
-}
 
 std::vector<std::pair<std::string, double>> Wang2020Resources::update(const ParamValues& values) {
     std::vector<std::pair<std::string, double>> ran;
-    activeResources = this;
     float roughness = valueOf(values, "roughness"), gamma = valueOf(values, "gamma");
     float particles = valueOf(values, "particles"), depth = valueOf(values, "depth"), seed = valueOf(values, "seed");
     float tableScale = valueOf(values, "table_scale");

@@ -3,6 +3,7 @@
 // passes a parameter change needs (Sec. 4.5): N, depth or seed -> quadtree; roughness or gamma -> DPF extraction
 // + accumulation; anything else -> nothing.
 #pragma once
+#include "common/bindings.glsl"
 #include <memory>
 
 #include "gl/handles.h"
@@ -14,8 +15,8 @@ namespace glimmer {
 
 class Wang2020Resources : public GlintMethodResources {
 public:
-    static constexpr int kDpfUnit = 8;
-    static constexpr int kQuadtreeBinding = 8;
+    static constexpr int kDpfUnit = UNIT_METHOD_FIRST;
+    static constexpr int kQuadtreeBinding = BINDING_METHOD_FIRST;
     std::vector<std::pair<std::string, double>> update(const ParamValues& values) override;
     void bind() override;
     // For the IBL mode's prefilter pass (Sec. 4.4): the accumulated DPF and what it was built for.
@@ -23,9 +24,6 @@ public:
     float roughness() const { return roughness_; }
     float gamma() const { return gamma_; }
     uint64_t dpfVersion() const { return dpfVersion_; }
-    // The instance last updated on this thread's context (the IBL mode reads the glint method's tables).
-    static Wang2020Resources* active();
-    ~Wang2020Resources() override;
 
 private:
     float roughness_ = -1, gamma_ = -1, particles_ = -1, depth_ = -1, seed_ = -1, tableScale_ = -1;

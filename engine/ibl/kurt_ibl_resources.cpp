@@ -1,4 +1,5 @@
 #include "ibl/kurt_ibl_resources.h"
+#include "common/bindings.glsl"
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +58,8 @@ KurtIblResources::KurtIblResources(std::vector<ParamSpec> specs, bool withPatter
       shaderRoot_(shaderRoot.empty() ? defaultShaderDir() : std::move(shaderRoot)),
       withPatterns_(withPatterns) {}
 
-void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource) {
+void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource,
+                               SceneCapture& capture) {
     const int pyramid = int(valueOf(specs_, values, "pyramid", 0.0f) + 0.5f);   // 0 source, 1 box, 2 gauss4, 3 gauss6
     if (pyramid > 0 && environmentSource != 0) {
         GLint size = 0;
@@ -101,7 +103,7 @@ void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GL
             slots[material] = int(glossy.size());
             glossy.push_back(i);
         }
-        objectMaps_->update(scene, glossy);   // re-renders only the maps whose scene inputs changed
+        objectMaps_->update(scene, glossy, capture);   // re-renders only the maps whose scene inputs changed
         objectMapCount_ = int(glossy.size());
     }
     if (slots != objectSlotValues_ || !objectSlots_) {
@@ -144,13 +146,13 @@ void KurtIblResources::prepare(const ParamValues& values, const Scene& scene, GL
 
 void KurtIblResources::bind() {
     if (!materials_) return;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, materials_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, lobes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 18, halfVectors_.id());
-    glBindTextureUnit(16, filteredEnvironment_ ? filteredEnvironment_.id() : 0);
-    if (objectSlots_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 19, objectSlots_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_IBL_FIRST + 0, materials_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_IBL_FIRST + 1, lobes_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_IBL_FIRST + 2, halfVectors_.id());
+    glBindTextureUnit(UNIT_IBL_FIRST, filteredEnvironment_ ? filteredEnvironment_.id() : 0);
+    if (objectSlots_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_IBL_FIRST + 3, objectSlots_.id());
     for (int i = 0; i < kMaxObjectMaps; ++i)
-        glBindTextureUnit(GLuint(17 + i), i < objectMapCount_ ? objectMaps_->cube(size_t(i)) : 0);
+        glBindTextureUnit(GLuint(UNIT_IBL_FIRST + 1 + i), i < objectMapCount_ ? objectMaps_->cube(size_t(i)) : 0);
 }
 
 }  // namespace glimmer::ibl

@@ -22,7 +22,7 @@
 #include "ibl/kurt_brdf.h"
 #include "ibl/object_environment.h"
 #include "ibl/regular_pattern.h"
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 
 namespace glimmer {
 struct Material;
@@ -48,7 +48,8 @@ class KurtIblResources : public IblModeResources {
 public:
     // withPatterns: build regular patterns (mode `regular`, params "samples" and "xi0").
     KurtIblResources(std::vector<ParamSpec> specs, bool withPatterns, std::filesystem::path shaderRoot = {});
-    void prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource) override;
+    void prepare(const ParamValues& values, const Scene& scene, GLuint environmentSource,
+                 SceneCapture& capture) override;
     void bind() override;
     int uploads() const { return uploads_; }   // how many times the buffers were rebuilt (tests)
 

@@ -46,27 +46,27 @@ static std::vector<float> sceneKey(const Scene& scene, uint32_t self) {
     return key;
 }
 
-int ObjectEnvironmentMaps::update(const Scene& scene, const std::vector<uint32_t>& glossyInstances) {
+int ObjectEnvironmentMaps::update(const Scene& scene, const std::vector<uint32_t>& glossyInstances,
+                                  SceneCapture& capture) {
     if (maps_.size() != glossyInstances.size()) maps_.resize(glossyInstances.size());
     int rendered = 0;
     for (size_t i = 0; i < glossyInstances.size(); ++i) {
         Map& map = maps_[i];
         std::vector<float> key = sceneKey(scene, glossyInstances[i]);
         if (map.cube && key == map.key && map.instance == glossyInstances[i]) continue;
-        if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderRoot_, RenderSettings{});
         map.instance = glossyInstances[i];
         map.key = std::move(key);
         map.centroid = instanceCentroid(scene, scene.instances.at(map.instance));
         // The scene as seen from the centroid, without the object itself.
         Scene others = scene;
         others.instances.erase(others.instances.begin() + map.instance);
-        GpuScene gpuScene(others);
+        std::vector<Camera> faces;
+        for (int face = 0; face < 6; ++face) faces.push_back(cubeFaceCamera(map.centroid, face));
+        std::vector<std::vector<float>> hdr = capture.renderHdr(others, faces, faceSize_);
         if (!map.cube) map.cube = createPyramidCube(faceSize_);
-        for (int face = 0; face < 6; ++face) {
-            renderer_->render(others, gpuScene, cubeFaceCamera(map.centroid, face), faceSize_, faceSize_);
-            std::vector<float> hdr = renderer_->readHdr();
-            glTextureSubImage3D(map.cube.id(), 0, 0, 0, face, faceSize_, faceSize_, 1, GL_RGBA, GL_FLOAT, hdr.data());
-        }
+        for (int face = 0; face < 6; ++face)
+            glTextureSubImage3D(map.cube.id(), 0, 0, 0, face, faceSize_, faceSize_, 1, GL_RGBA, GL_FLOAT,
+                                hdr[size_t(face)].data());
         pyramid_.build(map.cube.id(), faceSize_, filter_);
         ++rendered;
     }

@@ -13,8 +13,8 @@
 
 #include "gl/handles.h"
 #include "ibl/cube_pyramid.h"
-#include "render/gpu_scene.h"
-#include "render/renderer.h"
+#include "ibl/scene_capture.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace glimmer::ibl {
@@ -29,9 +29,9 @@ Camera cubeFaceCamera(glm::vec3 centre, int face);
 class ObjectEnvironmentMaps {
 public:
     ObjectEnvironmentMaps(std::filesystem::path shaderRoot, int faceSize, PyramidFilter filter);
-    // Maps for the instances in `glossyInstances` (indices into scene.instances). Re-renders the maps whose inputs
-    // changed; returns how many were re-rendered.
-    int update(const Scene& scene, const std::vector<uint32_t>& glossyInstances);
+    // Maps for the instances in `glossyInstances` (indices into scene.instances). Re-renders (through `capture`)
+    // the maps whose inputs changed; returns how many were re-rendered.
+    int update(const Scene& scene, const std::vector<uint32_t>& glossyInstances, SceneCapture& capture);
     GLuint cube(size_t i) const { return maps_[i].cube.id(); }
     glm::vec3 centroid(size_t i) const { return maps_[i].centroid; }
     int faceSize() const { return faceSize_; }
@@ -48,7 +48,6 @@ private:
     std::filesystem::path shaderRoot_;
     int faceSize_;
     PyramidFilter filter_;
-    std::unique_ptr<Renderer> renderer_;
     CubePyramidBuilder pyramid_;
     std::vector<Map> maps_;
 };

@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
-#include "render/environment_reference.h"
+#include "render/cube_texels.h"
 
 namespace glimmer {
 

@@ -7,6 +7,7 @@
 // 4", Eq. 2-4), filtered importance sampling of the source mips (Krivanek & Colbert 2008, GPU Gems 3 ch. 20,
 // Eq. 20-1/20-2), irradiance environment maps by spherical harmonics (Ramamoorthi & Hanrahan 2001, Eq. 7-8).
 #pragma once
+#include "common/bindings.glsl"
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -55,10 +56,10 @@ struct EnvironmentUniforms {
 };
 static_assert(sizeof(EnvironmentUniforms) == 11 * 16);
 
-constexpr unsigned kEnvironmentBinding = 7;      // uniform block binding
-constexpr unsigned kEnvironmentSpecularUnit = 6; // samplerCubeArray: layer 0 GGX, layer 1 Beckmann
-constexpr unsigned kEnvironmentBrdfLutUnit = 7;  // sampler2D: rg GGX (A, B), ba Beckmann (A, B)
-constexpr unsigned kEnvironmentSourceUnit = 24;  // samplerCube: unfiltered map with box mips (IBL modes)
+constexpr unsigned kEnvironmentBinding = BINDING_ENVIRONMENT;      // uniform block binding
+constexpr unsigned kEnvironmentSpecularUnit = UNIT_ENV_SPECULAR;   // samplerCubeArray: layer 0 GGX, layer 1 Beckmann
+constexpr unsigned kEnvironmentBrdfLutUnit = UNIT_ENV_BRDF_LUT;    // sampler2D: rg GGX (A, B), ba Beckmann (A, B)
+constexpr unsigned kEnvironmentSourceUnit = UNIT_ENV_SOURCE;       // samplerCube: unfiltered map with box mips (IBL modes)
 
 class Environment {
 public:

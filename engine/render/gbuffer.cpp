@@ -54,8 +54,6 @@ void FrameTargets::allocateGlintPost() {
     // RGBA32F: a micro-scale glint can exceed half-float range (one particle's radiance over a whole footprint).
     glintEnvironment_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
     glintLights_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
-    occlusionSums_ = gl::createTexture2D(GL_RG32F, width_, height_);
-    occludedGlint_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
     lightingGlintFbo_ = createFramebuffer("lighting+glints");
     glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
     glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT1, glintEnvironment_.id(), 0);
@@ -63,12 +61,6 @@ void FrameTargets::allocateGlintPost() {
     const GLenum drawBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(lightingGlintFbo_.id(), 3, drawBuffers);
     checkComplete(lightingGlintFbo_.id(), "lighting+glints");
-    occlusionSumsFbo_ = createFramebuffer("occlusion sums");
-    glNamedFramebufferTexture(occlusionSumsFbo_.id(), GL_COLOR_ATTACHMENT0, occlusionSums_.id(), 0);
-    checkComplete(occlusionSumsFbo_.id(), "occlusion sums");
-    occludedGlintFbo_ = createFramebuffer("occluded glints");
-    glNamedFramebufferTexture(occludedGlintFbo_.id(), GL_COLOR_ATTACHMENT0, occludedGlint_.id(), 0);
-    checkComplete(occludedGlintFbo_.id(), "occluded glints");
 }
 
 }  // namespace glimmer

@@ -8,7 +8,7 @@ class FrameTargets {
 public:
     static constexpr int kGBufferColorCount = 5;
 
-    // (Re)allocates when the size changes; `glintPost` also allocates the glint post-pass targets (below).
+    // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets (below).
     void resize(int width, int height, bool glintPost = false);
     int width() const { return width_; }
     int height() const { return height_; }
@@ -21,18 +21,13 @@ public:
     GLuint displayFramebuffer() const { return displayFbo_.id(); }
     GLuint displayTexture() const { return display_.id(); }
 
-    // Glint post pass (GlintMethod::glintPostPass, shaders/post/). The lighting pass of such a method draws into
+    // Methods with a glint post pass (GlintMethod::glintPostPass). The lighting pass of such a method draws into
     // lightingGlintFramebuffer(): the HDR target plus glintEnvironmentTexture() (rgb: environment glints before
     // occlusion, a: visibility along the mirror direction) and glintLightsTexture() (rgb: light glints, a: 1 on
-    // glinty pixels). The occlusion blur writes its horizontal sums to occlusionSumsTexture() and then the
-    // occluded glints (rgb) and the blurred visibility (a) to occludedGlintTexture().
+    // glinty pixels), which the method's passes read (their own intermediates are theirs).
     GLuint lightingGlintFramebuffer() const { return lightingGlintFbo_.id(); }
     GLuint glintEnvironmentTexture() const { return glintEnvironment_.id(); }
     GLuint glintLightsTexture() const { return glintLights_.id(); }
-    GLuint occlusionSumsFramebuffer() const { return occlusionSumsFbo_.id(); }
-    GLuint occlusionSumsTexture() const { return occlusionSums_.id(); }
-    GLuint occludedGlintFramebuffer() const { return occludedGlintFbo_.id(); }
-    GLuint occludedGlintTexture() const { return occludedGlint_.id(); }
 
 private:
     int width_ = 0, height_ = 0;
@@ -40,8 +35,8 @@ private:
     gl::Texture depth_, hdr_, display_;
     gl::Framebuffer gbufferFbo_, hdrFbo_, displayFbo_;
     void allocateGlintPost();
-    gl::Texture glintEnvironment_, glintLights_, occlusionSums_, occludedGlint_;
-    gl::Framebuffer lightingGlintFbo_, occlusionSumsFbo_, occludedGlintFbo_;
+    gl::Texture glintEnvironment_, glintLights_;
+    gl::Framebuffer lightingGlintFbo_;
 };
 
 }  // namespace glimmer

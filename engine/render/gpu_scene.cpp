@@ -1,4 +1,5 @@
 #include "render/gpu_scene.h"
+#include "common/bindings.glsl"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -92,7 +93,8 @@ void GpuScene::drawInstances(const Scene& scene) const {
         const int slots[] = {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture,
                              material.occlusionTexture, material.glintMaskTexture};
         int mask = 0;
-        for (int unit = 0; unit < 5; ++unit) {
+        static_assert(UNIT_MATERIAL_BASE_COLOR == 0 && UNIT_MATERIAL_GLINT_MASK == 4, "slots[] order = units");
+        for (int unit = UNIT_MATERIAL_BASE_COLOR; unit <= UNIT_MATERIAL_GLINT_MASK; ++unit) {
             int index = slots[unit];
             if (index >= 0 && index < int(textures_.size())) {
                 glBindTextureUnit(unit, textures_[index].id());

@@ -4,11 +4,15 @@
 
 #include <algorithm>
 
-#include "core/clock.h"
 #include "core/error.h"
 #include "gl/debug.h"
 #include "glints/methods.h"
-#include "render/glint_post.h"
+#include "common/bindings.glsl"
+#include "render/passes/gbuffer_pass.h"
+#include "render/passes/lighting_pass.h"
+#include "render/passes/method_pass_host.h"
+#include "render/passes/tonemap_pass.h"
+#include "render/renderer_capture.h"
 #include "render/shader_interface.h"
 
 namespace glimmer {
@@ -22,54 +26,31 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
-    for (gl::Query& q : timerQueries_) {
-        GLuint id = 0;
-        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
-        q = gl::Query(id);
-    }
-    buildPrograms();
+    capture_ = std::make_unique<RendererCapture>(shaderRoot_);
+    buildPasses();
 }
 
-gl::ProgramDesc Renderer::lightingDesc() const {
-    const GlintMethod& method = findGlintMethod(settings_.method);
-    const IblMode& ibl = findIblMode(settings_.ibl);
-    checkIblModeMethod(ibl, method.id);
-    gl::ProgramDesc desc;
-    desc.name = "lighting/" + method.id + (ibl.id == "prefiltered" ? "" : "/" + ibl.id);
-    desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
-    desc.defines = {method.define, ibl.define};
-    if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
-    desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
-    desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
-    desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
-    return desc;
+Renderer::~Renderer() = default;
+
+static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& method, const std::filesystem::path& root) {
+    std::vector<std::unique_ptr<Pass>> passes;
+    if (method.createPasses)
+        for (std::unique_ptr<MethodPass>& pass : method.createPasses(root))
+            passes.push_back(std::make_unique<MethodPassHost>(std::move(pass)));
+    return passes;
 }
 
-void Renderer::buildPrograms() {
-    // Build all first, then swap: a failure leaves the previous programs in place.
-    gl::Program gbuffer(shaderRoot_, {"gbuffer", {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}});
-    gl::Program lighting(shaderRoot_, lightingDesc());
-    gl::Program tonemap(shaderRoot_, {"tonemap", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "tonemap.frag"}}});
-    gbufferProgram_ = std::move(gbuffer);
-    lightingProgram_ = std::move(lighting);
-    tonemapProgram_ = std::move(tonemap);
-    buildPostPrograms();
+void Renderer::buildPasses() {
+    // Build all first, then swap: a failure leaves the previous passes in place.
+    auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
+    auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
+    auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
+    gbufferPass_ = std::move(gbuffer);
+    lightingPass_ = std::move(lighting);
+    methodPasses_ = std::move(methodPasses);
+    tonemapPass_ = std::move(tonemap);
     createMethodResources();
-}
-
-void Renderer::buildPostPrograms() {
-    if (!findGlintMethod(settings_.method).glintPostPass) {
-        occlusionBlurProgram_ = {};
-        glintBlurProgram_ = {};
-        return;
-    }
-    gl::Program occlusion(shaderRoot_, {"post/glint_occlusion_blur",
-                                        {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                         {GL_FRAGMENT_SHADER, "post/glint_occlusion_blur.frag"}}});
-    gl::Program glints(shaderRoot_, {"post/glint_blur",
-                                     {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "post/glint_blur.frag"}}});
-    occlusionBlurProgram_ = std::move(occlusion);
-    glintBlurProgram_ = std::move(glints);
 }
 
 void Renderer::createMethodResources() {
@@ -81,7 +62,7 @@ void Renderer::createMethodResources() {
 
 void Renderer::reloadPrograms() {
     try {
-        buildPrograms();
+        buildPasses();
         shaderErrors_.clear();
     } catch (const std::exception& e) {
         shaderErrors_["all programs"] = e.what();
@@ -89,14 +70,17 @@ void Renderer::reloadPrograms() {
     }
 }
 
-std::vector<gl::Program*> Renderer::programs() {
-    std::vector<gl::Program*> all = {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
-    if (occlusionBlurProgram_) all.insert(all.end(), {&occlusionBlurProgram_, &glintBlurProgram_});
-    return all;
+std::vector<Pass*> Renderer::frame() const {
+    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    for (const auto& pass : methodPasses_) passes.push_back(pass.get());
+    passes.push_back(tonemapPass_.get());
+    return passes;
 }
-std::vector<const gl::Program*> Renderer::programs() const {
-    std::vector<const gl::Program*> all = {&gbufferProgram_, &lightingProgram_, &tonemapProgram_};
-    if (occlusionBlurProgram_) all.insert(all.end(), {&occlusionBlurProgram_, &glintBlurProgram_});
+
+std::vector<gl::Program*> Renderer::programs() const {
+    std::vector<gl::Program*> all;
+    for (Pass* pass : frame())
+        for (gl::Program* program : pass->programs()) all.push_back(program);
     return all;
 }
 
@@ -123,21 +107,20 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-    bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
-    RenderSettings previous = settings_;
-    settings_ = settings;
-    if (methodChanged) {
-        try {
-            std::string previousName = lightingProgram_.desc().name;
-            lightingProgram_ = gl::Program(shaderRoot_, lightingDesc());
-            shaderErrors_.erase(previousName);
-            buildPostPrograms();
-            createMethodResources();
-        } catch (...) {
-            settings_ = previous;
-            throw;
-        }
+    const bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
+    if (!methodChanged) {
+        settings_ = settings;
+        return;
     }
+    // Build the new method's passes first: a failure keeps the previous method running.
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl);
+    auto methodPasses = methodPassesOf(findGlintMethod(settings.method), shaderRoot_);
+    const std::string previousName = lightingPass_->programs().front()->desc().name;
+    settings_ = settings;
+    lightingPass_ = std::move(lighting);
+    methodPasses_ = std::move(methodPasses);
+    shaderErrors_.erase(previousName);
+    createMethodResources();
 }
 
 std::vector<std::filesystem::path> Renderer::shaderDependencies() const {
@@ -152,211 +135,72 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
     environment_.update(scene.environment, sunFromScene(scene), flag);
 }
 
+void Renderer::updateMethodData(bool measurePasses) {
+    if (!methodResources_ && !iblResources_) return;
+    environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
+    bool cleared = false;
+    auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
+        for (const auto& [name, ms] : ran) {
+            if (measurePasses) timer_.recordWallOnly(name, ms);
+            if (!cleared) editPasses_.clear(), cleared = true;
+            editPasses_.push_back({name, ms, 0.0});
+        }
+    };
+    if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
+    if (iblResources_ && environment_.enabled())
+        record(iblResources_->update(settings_.iblModeValues(settings_.ibl), methodResources_.get()));
+}
+
+void Renderer::runPass(Pass& pass, const FrameContext& frame) {
+    if (!pass.runs(frame)) return;
+    PassScope scope(timer_, pass.name());
+    pass.execute(frame);
+}
+
 void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                       bool measurePasses) {
     prepareEnvironment(scene);
     // IBL-mode resources may render (per-object environment maps), so they update before any state of this frame.
     if (iblResources_)
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
-                               environment_.enabled() ? environment_.sourceCube() : 0);
-    const bool glintPost = bool(occlusionBlurProgram_);
-    targets_.resize(width, height, glintPost);
-    TimerFrame* timerFrame = asyncGpuTimers_ && !measurePasses ? &asyncTimers_[frameIndex_ % kTimerFrames] : nullptr;
-    if (!timerFrame) timings_.clear();
-    if (timerFrame && timerFrame->pending) {
-        // Read the queries issued kTimerFrames frames ago, only if the last one has finished (never wait).
-        GLint available = 0;
-        glGetQueryObjectiv(timerFrame->queries[timerFrame->names.size() - 1].id(), GL_QUERY_RESULT_AVAILABLE, &available);
-        if (available) {
-            timings_.clear();
-            for (size_t i = 0; i < timerFrame->names.size(); ++i) {
-                GLuint64 ns = 0;
-                glGetQueryObjectui64v(timerFrame->queries[i].id(), GL_QUERY_RESULT, &ns);
-                timings_.push_back({timerFrame->names[i], 0.0, double(ns) * 1e-6});
-            }
-        }
-    }
-    if (timerFrame) {
-        timerFrame->names.clear();
-        timerFrame->pending = false;
-    }
+                               environment_.enabled() ? environment_.sourceCube() : 0, *capture_);
+    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass);
+    timer_.beginFrame(measurePasses     ? PassTimer::Mode::Measure
+                      : asyncGpuTimers_ ? PassTimer::Mode::Async
+                                        : PassTimer::Mode::Off);
 
-    FrameUniforms frame{};
-    frame.view = camera.view();
-    frame.projection = camera.projection(float(width) / float(height));
-    frame.viewProjection = frame.projection * frame.view;
-    frame.inverseViewProjection = glm::inverse(frame.viewProjection);
-    frame.cameraPosition = glm::vec4(camera.position, 1.0f);
-    frame.skyColor = glm::vec4(scene.skyColor, 1.0f);
-    frame.viewport = {width, height, int(frameIndex_), settings_.debugView};
-    frame.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
-                      settings_.common_("ambient"), 0.0f};
     const IblMode& ibl = findIblMode(settings_.ibl);
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
-    frame.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
-    glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(frame), &frame);
+    FrameUniforms uniforms{};
+    uniforms.view = camera.view();
+    uniforms.projection = camera.projection(float(width) / float(height));
+    uniforms.viewProjection = uniforms.projection * uniforms.view;
+    uniforms.inverseViewProjection = glm::inverse(uniforms.viewProjection);
+    uniforms.cameraPosition = glm::vec4(camera.position, 1.0f);
+    uniforms.skyColor = glm::vec4(scene.skyColor, 1.0f);
+    uniforms.viewport = {width, height, int(frameIndex_), settings_.debugView};
+    uniforms.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
+                         settings_.common_("ambient"), 0.0f};
+    uniforms.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
+    glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(uniforms), &uniforms);
     std::vector<float> params = packMethodParams(findGlintMethod(settings_.method), settings_.methodValues(settings_.method));
     glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms_.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodParams_.id());
     std::vector<float> iblParams = packIblParams(ibl, settings_.iblModeValues(ibl.id));
     glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblParams_.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameUniforms_.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, methodParams_.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_IBL_PARAMS, iblParams_.id());
 
-    Stopwatch clock;
-    int queryIndex = 0;
-    auto beginPass = [&](const char* name) {
-        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
-        if (measurePasses) {
-            glFinish();
-            clock.restart();
-            if (size_t(queryIndex) >= timerQueries_.size()) {
-                GLuint id = 0;
-                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
-                timerQueries_.emplace_back(id);
-            }
-            glBeginQuery(GL_TIME_ELAPSED, timerQueries_[size_t(queryIndex)].id());
-        } else if (timerFrame) {
-            if (timerFrame->names.size() == timerFrame->queries.size()) {
-                GLuint id = 0;
-                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
-                timerFrame->queries.emplace_back(id);
-            }
-            glBeginQuery(GL_TIME_ELAPSED, timerFrame->queries[timerFrame->names.size()].id());
-        }
-    };
-    auto endPass = [&](const char* name) {
-        if (measurePasses) {
-            glEndQuery(GL_TIME_ELAPSED);
-            glFinish();
-            PassTiming t{name, clock.elapsedMs(), 0.0};
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(timerQueries_[size_t(queryIndex)].id(), GL_QUERY_RESULT, &ns);
-            t.gpuMs = double(ns) * 1e-6;
-            timings_.push_back(t);
-            ++queryIndex;
-        } else if (timerFrame) {
-            glEndQuery(GL_TIME_ELAPSED);
-            timerFrame->names.push_back(name);
-            timerFrame->pending = true;
-        }
-        glPopDebugGroup();
-    };
-
-    glViewport(0, 0, width, height);
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-
-    // G-buffer: reversed-Z (clear 0, GREATER passes), no blending, no culling (glTF double-sided surfaces).
-    if (!blendSample) {
-        beginPass("gbuffer");
-        glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_GREATER);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        const float zero[4] = {0, 0, 0, 0};
-        for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
-        float clearDepth = 0.0f;
-        glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
-        gbufferProgram_.use();
-        gpuScene.drawInstances(scene);
-        endPass("gbuffer");
-    }
-
-    // Parameter-dependent data of the glint method and the IBL mode (tables, trees, the prefiltered environment of
-    // wang2020), rebuilt on demand with the environment bound (a mode may prefilter it); the passes that ran are
-    // listed in --stats (material editing, Wang et al. 2020 Sec. 4.5).
-    if (methodResources_ || iblResources_) {
-        environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
-        bool cleared = false;
-        auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
-            for (const auto& [name, ms] : ran) {
-                if (measurePasses) timings_.push_back({name, ms, 0.0});
-                if (!cleared) editPasses_.clear(), cleared = true;
-                editPasses_.push_back({name, ms, 0.0});
-            }
-        };
-        if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
-        if (iblResources_ && environment_.enabled()) {
-            auto values = settings_.iblValues.find(settings_.ibl);
-            record(iblResources_->update(values == settings_.iblValues.end() ? ParamValues{} : values->second));
-        }
-    }
-
-    beginPass("lighting");
-    glBindFramebuffer(GL_FRAMEBUFFER, glintPost ? targets_.lightingGlintFramebuffer() : targets_.hdrFramebuffer());
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    if (blendSample) {
-        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1). Only the HDR target blends (the
-        // glint post-pass targets hold this sample's glints; their post pass adds them with the same weight).
-        glEnablei(GL_BLEND, 0);
-        glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(sampleIndex_ + 1));
-        glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
-    }
-    lightingProgram_.use();
-    if (methodResources_) methodResources_->bind();
-    if (iblResources_) iblResources_->bind();
-    environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
-    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glBindTextureUnit(i, targets_.gbufferTexture(i));
-    glBindTextureUnit(5, targets_.depthTexture());
-    glBindVertexArray(emptyVao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDisable(GL_BLEND);
-    endPass("lighting");
-
-    // Wang et al. 2020 Sec. 4.4: blur the directional occlusion (9 taps), multiply, blur the glints (3 taps), add.
-    // Debug views have no glints to add.
-    if (glintPost && settings_.debugView == 0) {
-        const ParamValues values = settings_.methodValues(settings_.method);
-        const GlintMethod& method = findGlintMethod(settings_.method);
-        auto taps = [&](const char* name) {
-            for (const ParamSpec& spec : method.params)
-                if (spec.name == name) return int(paramOr(values, spec) + 0.5f);
-            throw Error(method.id + ": glint post pass needs the parameter " + name);
-        };
-        const int occlusionRadius = glintpost::radiusOf(taps("blur_occlusion"));
-        const int glintRadius = glintpost::radiusOf(taps("blur_glints"));
-        auto setKernel = [](const gl::Program& program, int radius) {
-            std::vector<float> weights = glintpost::binomialWeights(radius);
-            glProgramUniform1i(program.id(), 1, radius);
-            glProgramUniform1fv(program.id(), 2, GLsizei(weights.size()), weights.data());
-        };
-        beginPass("glint_occlusion_blur");
-        occlusionBlurProgram_.use();
-        setKernel(occlusionBlurProgram_, occlusionRadius);
-        glBindTextureUnit(0, targets_.glintEnvironmentTexture());
-        glBindTextureUnit(1, targets_.glintLightsTexture());
-        glBindFramebuffer(GL_FRAMEBUFFER, targets_.occlusionSumsFramebuffer());
-        glProgramUniform1i(occlusionBlurProgram_.id(), 0, 0);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glBindTextureUnit(2, targets_.occlusionSumsTexture());
-        glBindFramebuffer(GL_FRAMEBUFFER, targets_.occludedGlintFramebuffer());
-        glProgramUniform1i(occlusionBlurProgram_.id(), 0, 1);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        endPass("glint_occlusion_blur");
-
-        beginPass("glint_blur");
-        glintBlurProgram_.use();
-        setKernel(glintBlurProgram_, glintRadius);
-        glBindTextureUnit(0, targets_.occludedGlintTexture());
-        glBindFramebuffer(GL_FRAMEBUFFER, targets_.hdrFramebuffer());
-        glEnable(GL_BLEND);
-        glBlendColor(0.0f, 0.0f, 0.0f, blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f);
-        glBlendFuncSeparate(GL_CONSTANT_ALPHA, GL_ONE, GL_ZERO, GL_ONE);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glDisable(GL_BLEND);
-        endPass("glint_blur");
-    }
-
-    beginPass("tonemap");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.displayFramebuffer());
-    tonemapProgram_.use();
-    glBindTextureUnit(0, targets_.hdrTexture());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    endPass("tonemap");
+    const FrameContext frame{scene,        gpuScene,     camera,   settings_, targets_,
+                             environment_, methodResources_.get(), iblResources_.get(),
+                             width,        height,       blendSample,
+                             blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id()};
+    runPass(*gbufferPass_, frame);
+    updateMethodData(measurePasses);
+    runPass(*lightingPass_, frame);
+    for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
+    runPass(*tonemapPass_, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ++frameIndex_;

@@ -1,5 +1,6 @@
-// The deferred renderer: G-buffer pass, lighting pass (with the selected glint method), tone-mapping pass.
-// Owns its programs and frame targets; the scene is uploaded separately (GpuScene).
+// The deferred renderer: a fixed list of passes (render/passes/): G-buffer, lighting (with the selected glint
+// method and IBL mode), the method's own passes (GlintMethod::createPasses), tone mapping. Owns the passes and the
+// frame targets; the scene is uploaded separately (GpuScene).
 #pragma once
 #include <array>
 #include <filesystem>
@@ -11,25 +12,27 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/methods.h"
+#include "ibl/ibl_modes.h"
 #include "render/environment.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
-#include "render/ibl_modes.h"
+#include "render/passes/pass.h"
+#include "render/passes/pass_timer.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
 namespace glimmer {
 
-struct PassTiming {
-    std::string name;
-    double wallMs = 0.0;   // wall clock around glFinish (meaningful everywhere, adds sync points)
-    double gpuMs = 0.0;    // GL_TIME_ELAPSED (meaningful on real GPUs only; llvmpipe times the submit)
-};
+class GBufferPass;
+class LightingPass;
+class TonemapPass;
+class RendererCapture;
 
 class Renderer {
 public:
     // Builds every program; throws gl::ShaderError with file:line on compile errors.
     Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings);
+    ~Renderer();
 
     // Switches method or parameters. Rebuilds the lighting program when the method changes.
     void setSettings(const RenderSettings& settings);
@@ -48,7 +51,7 @@ public:
     const std::map<std::string, std::string>& shaderErrors() const { return shaderErrors_; }
 
     // Window mode: when enabled and render() is called without measurePasses, each pass is wrapped in a
-    // GL_TIME_ELAPSED query that is read back kTimerFrames frames later only if its result is already
+    // GL_TIME_ELAPSED query that is read back PassTimer::kFrames frames later only if its result is already
     // available: no glFinish, no stall. passTimings() then holds gpuMs (wallMs 0) of a frame a few frames old.
     // Meaningless on software renderers (llvmpipe times the submit, not the work).
     void setAsyncGpuTimers(bool enabled) { asyncGpuTimers_ = enabled; }
@@ -64,7 +67,7 @@ public:
     // With measurePasses, each pass is closed by glFinish and timed (adds sync points; off in the window).
     void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                 bool measurePasses = false);
-    const std::vector<PassTiming>& passTimings() const { return timings_; }
+    const std::vector<PassTiming>& passTimings() const { return timer_.timings(); }
     // The on-demand passes of the last frame that ran any (method / IBL-mode data rebuilt after an edit, wall ms),
     // kept until the next edit so the window can show them.
     const std::vector<PassTiming>& lastEditPasses() const { return editPasses_; }
@@ -78,45 +81,40 @@ public:
     // Readbacks, bottom row first (GL order).
     std::vector<float> readHdr() const;        // RGBA32F
     std::vector<uint8_t> readDisplay() const;  // RGBA8, tone-mapped sRGB
-    // The glint post pass's inputs of the last frame (methods with GlintMethod::glintPostPass, else empty): the
+    // The method passes' inputs of the last frame (methods with GlintMethod::glintPostPass, else empty): the
     // environment-glint and light-glint targets, RGBA32F bottom-up (layout in FrameTargets).
     std::vector<float> readGlintEnvironment() const;
     std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
 
 private:
-    void buildPrograms();
-    void buildPostPrograms();   // the glint post pass's programs when the method has one, else none
+    void buildPasses();          // every pass and the method's resources; throws, keeping the previous ones
     void createMethodResources();
-    // Sec. 4.4 blurs of the glint post pass (after the lighting pass; `blendWeight` as the lighting pass's).
-    void drawGlintPost(float blendWeight);
-    gl::ProgramDesc lightingDesc() const;
-    // Every program the renderer draws with (hot reload and dependency listing walk this list).
-    std::vector<gl::Program*> programs();
-    std::vector<const gl::Program*> programs() const;
+    // On-demand data of the glint method and the IBL mode (tables, trees, the prefiltered environment of
+    // wang2020), rebuilt between the G-buffer and the lighting pass; the passes that ran are listed in --stats.
+    void updateMethodData(bool measurePasses);
+    void runPass(Pass& pass, const FrameContext& frame);
+    // The frame, in order (programs() and render() walk this list).
+    std::vector<Pass*> frame() const;
+    std::vector<gl::Program*> programs() const;
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
-    gl::Program gbufferProgram_, lightingProgram_, tonemapProgram_;
-    gl::Program occlusionBlurProgram_, glintBlurProgram_;   // empty unless the method has a glint post pass
+    std::unique_ptr<GBufferPass> gbufferPass_;
+    std::unique_ptr<LightingPass> lightingPass_;
+    std::vector<std::unique_ptr<Pass>> methodPasses_;
+    std::unique_ptr<TonemapPass> tonemapPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
+    std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
     Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_, iblParams_;
     uint32_t sampleIndex_ = 0;
     gl::VertexArray emptyVao_;
-    std::vector<gl::Query> timerQueries_ = std::vector<gl::Query>(3);  // grows when passes are added
-    std::vector<PassTiming> timings_;
+    PassTimer timer_;
     std::vector<PassTiming> editPasses_;
     std::map<std::string, std::string> shaderErrors_;
-    struct TimerFrame {
-        std::vector<gl::Query> queries;
-        std::vector<std::string> names;
-        bool pending = false;
-    };
-    static constexpr size_t kTimerFrames = 3;
-    std::array<TimerFrame, kTimerFrames> asyncTimers_;
     bool asyncGpuTimers_ = false;
     uint32_t frameIndex_ = 0;
 };

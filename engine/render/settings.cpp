@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 
 namespace glimmer {
 

@@ -1,5 +1,6 @@
 // C++ mirrors of the GPU blocks declared in shaders/common/frame.glsl. Layouts must match (std140 / std430).
 #pragma once
+#include "common/bindings.glsl"
 #include <glm/glm.hpp>
 
 namespace glimmer {
@@ -29,9 +30,9 @@ struct GpuMaterial {            // std430, binding 2
 };
 
 // Binding points (uniform blocks and storage buffers).
-constexpr unsigned kFrameBinding = 0;
-constexpr unsigned kLightBinding = 1;
-constexpr unsigned kMaterialBinding = 2;
-constexpr unsigned kMethodParamBinding = 3;
+constexpr unsigned kFrameBinding = BINDING_FRAME;
+constexpr unsigned kLightBinding = BINDING_LIGHTS;
+constexpr unsigned kMaterialBinding = BINDING_MATERIALS;
+constexpr unsigned kMethodParamBinding = BINDING_METHOD_PARAMS;
 
 }  // namespace glimmer

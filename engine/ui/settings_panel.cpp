@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "render/aov.h"
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 
 namespace glimmer::ui {
 
@@ -89,7 +89,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
     }
 
-    // Environment integration: the IBL mode selector and the mode's own parameters (render/ibl_modes.h).
+    // Environment integration: the IBL mode selector and the mode's own parameters (ibl/ibl_modes.h).
     ui.heading("Environment integration (I)");
     std::vector<std::string> modes;
     int modeIndex = 0;

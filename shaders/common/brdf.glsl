@@ -1,7 +1,7 @@
 // Microfacet BRDF terms in the shading frame (z = normal). Cook & Torrance 1982 with
 // GGX (Walter et al. 2007, Eq. 33) or Beckmann (Walter et al. 2007, Eq. 25) distributions, separable Smith
 // masking-shadowing G = G1(wi) G1(wo) (Walter et al. Eq. 23, 27, 34), Schlick Fresnel.
-// The CPU reference of these formulas is engine/render/brdf_reference.h; keep both in step.
+// The CPU reference of these formulas is engine/reference/brdf_reference.h; keep both in step.
 #include "common/constants.glsl"
 
 float D_GGX(vec3 h, float alpha) {

@@ -1,5 +1,6 @@
 // Per-frame data shared by every pass. Mirrors FrameUniforms in engine/render/shader_interface.h (std140).
-layout(std140, binding = 0) uniform FrameBlock {
+#include "common/bindings.glsl"
+layout(std140, binding = BINDING_FRAME) uniform FrameBlock {
     mat4 u_view;
     mat4 u_projection;
     mat4 u_viewProjection;
@@ -16,7 +17,7 @@ struct GpuLight {
     vec4 vectorType;         // xyz vector, w type
     vec4 colorIntensity;     // rgb colour, a intensity
 };
-layout(std430, binding = 1) readonly buffer LightBlock { GpuLight u_lights[]; };
+layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight u_lights[]; };
 
 // Materials (std430), indexed by the material id stored in the G-buffer.
 struct GpuMaterial {
@@ -24,7 +25,7 @@ struct GpuMaterial {
     vec4 alphaMetallicNdfGlinty;      // x alpha, y metallic, z ndf (0 GGX, 1 Beckmann), w glinty (0/1)
     vec4 densityCutoff;               // x glint density scale, y alpha cutoff (< 0: opaque)
 };
-layout(std430, binding = 2) readonly buffer MaterialBlock { GpuMaterial u_materials[]; };
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBlock { GpuMaterial u_materials[]; };
 
 // Debug views (--aov); mirror the table in engine/render/aov.cpp.
 const int VIEW_FINAL = 0;

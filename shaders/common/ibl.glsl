@@ -6,14 +6,15 @@
 // then reflects exactly the incident constant radiance: the white furnace holds). The per-light loop of
 // lighting.frag keeps its unweighted Lambert + Cook-Torrance sum.
 // Deviation: glinty materials get the smooth prefiltered baseline here; glint methods act on the lights only.
+#include "common/bindings.glsl"
 #include "common/constants.glsl"
 
-layout(binding = 6) uniform samplerCubeArray u_envSpecular;   // layer = NDF; level 0 = unfiltered source
-layout(binding = 7) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
-layout(binding = 24) uniform samplerCube u_envSource;          // unfiltered map, box-filtered mip chain (IBL modes)
+layout(binding = UNIT_ENV_SPECULAR) uniform samplerCubeArray u_envSpecular;   // layer = NDF; level 0 = unfiltered source
+layout(binding = UNIT_ENV_BRDF_LUT) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
+layout(binding = UNIT_ENV_SOURCE) uniform samplerCube u_envSource;          // unfiltered map, box-filtered mip chain (IBL modes)
 
 // Mirrors EnvironmentUniforms in engine/render/environment.h (std140).
-layout(std140, binding = 7) uniform EnvironmentBlock {
+layout(std140, binding = BINDING_ENVIRONMENT) uniform EnvironmentBlock {
     vec4 u_envSh[9];      // rgb: irradiance / pi, cosine-convolved SH coefficients
     vec4 u_envParams;     // x intensity, y enabled, z last prefiltered level, w unused
     vec4 u_envRotation;   // x cos, y sin of env.rotation about +y

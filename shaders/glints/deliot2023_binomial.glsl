@@ -2,7 +2,8 @@
 // anisotropic grids": the random-number plumbing and the gated Gaussian binomial approximation (Sec. 6.3).
 // Shared by glints/deliot2023.glsl and the statistical tests (tests/deliot2023_test.cpp compiles a compute
 // shader that includes this file), so the tests exercise exactly the code the method runs.
-// CPU mirror: engine/glints/deliot2023_reference.{h,cpp}; keep both in step.
+// CPU mirror: engine/reference/deliot2023_reference.{h,cpp}; keep both in step.
+#include "common/bindings.glsl"
 
 // Sec. 6.3: random numbers come from a small texture generated once at start-up
 // (engine/glints/deliot2023_resources.cpp): 1024 x 1024 R32UI texels, each one (uniform, Gaussian) pair packed as
@@ -13,8 +14,8 @@
 // Angular cell (a, b) of a spatial vertex lives in texel vertexTexel + (a, b), so a cell keeps its random numbers
 // whichever 2x2 bilinear neighbourhood it is part of (no jumps as h moves), and the 4 cells of a neighbourhood are
 // one textureGather (4 texelFetch per vertex made the noise reads most of the method's cost on llvmpipe).
-layout(binding = 8) uniform usampler2D u_deliotNoise;   // NEAREST, REPEAT
-const int DELIOT_NOISE_SIZE = 1024;   // must match kNoiseSize in engine/glints/deliot2023_reference.h
+layout(binding = UNIT_METHOD_FIRST) uniform usampler2D u_deliotNoise;   // NEAREST, REPEAT
+const int DELIOT_NOISE_SIZE = 1024;   // must match kNoiseSize in engine/glints/deliot2023_noise.h
 
 // Packed pairs of angular cells a0 + (0, 1), a0 + (1, 1), a0 + (1, 0), a0 (textureGather's component order).
 uvec4 deliotNoiseGather(ivec2 vertexTexel, ivec2 a0) {

@@ -1,11 +1,12 @@
 // Test kernel: statistics of the gated Gaussian binomial (glints/deliot2023_binomial.glsl, the method's own code)
 // over every random pair of the noise texture, for a list of (N, p). One invocation per (texture row, config):
 // sum, sum of squares and zero count of its 1024 samples, plus P1 (Eq. 16) for the precision check.
+#include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "glints/deliot2023_binomial.glsl"
 
-layout(std430, binding = 14) readonly buffer Configs { vec2 u_configs[]; };        // (N, p)
-layout(std430, binding = 15) writeonly buffer RowSums { dvec4 u_rowSums[]; };       // [config * size + row]
+layout(std430, binding = BINDING_METHOD_LAST - 1) readonly buffer Configs { vec2 u_configs[]; };        // (N, p)
+layout(std430, binding = BINDING_METHOD_LAST) writeonly buffer RowSums { dvec4 u_rowSums[]; };       // [config * size + row]
 
 void main() {
     uint row = gl_GlobalInvocationID.x, config = gl_GlobalInvocationID.y;

@@ -1,6 +1,7 @@
 // Test probe: runs a glint method's glintSetup + glintD on synthetic surfaces (UV, derivatives, half vector) and
 // writes D, the footprint AOV and the extra AOV. Used by tests/deliot2023_test.cpp and tests/zirr2016_test.cpp
 // (engine/glints/deliot2023_probe.cpp) to check the real shader code with controlled footprints.
+#include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "common/constants.glsl"
 #include "common/brdf.glsl"
@@ -13,8 +14,8 @@ struct ProbeInput {
     vec4 duvdyAlphaNdf;    // duv/dy, alpha, ndf
     vec4 halfDensity;      // h (shading frame), density scale
 };
-layout(std430, binding = 14) readonly buffer ProbeInputs { ProbeInput u_probeIn[]; };
-layout(std430, binding = 15) writeonly buffer ProbeOutputs { vec4 u_probeOut[]; };   // 3 per probe
+layout(std430, binding = BINDING_METHOD_LAST - 1) readonly buffer ProbeInputs { ProbeInput u_probeIn[]; };
+layout(std430, binding = BINDING_METHOD_LAST) writeonly buffer ProbeOutputs { vec4 u_probeOut[]; };   // 3 per probe
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -2,7 +2,7 @@
 // Constant Time" (ACM TOG 44(6)): the parts shared by evaluation (kemppinen2025.glsl) and importance sampling
 // (kemppinen2025_sampling.glsl): the NDF-to-prior mappings T (Sec. 3.2.1-3.2.2), the smooth NDF they invert,
 // the implicit 4D jittered grid (Sec. 3.3.1) and the Gaussian / erf helpers. No dependence on the lighting pass,
-// so a compute shader can include it. CPU twin: engine/glints/kemppinen2025_reference.cpp (keep in step).
+// so a compute shader can include it. CPU twin: engine/reference/kemppinen2025_reference.cpp (keep in step).
 
 // ---- Prior space U: the disk of radius 1/2 inscribed in the unit square (Sec. 3.2, "a disk inscribed in the
 // unit square"). Every mapping below first produces a point p of the unit disk, then x = 0.5 + 0.5 p.

@@ -1,6 +1,6 @@
 // Kemppinen et al. 2025, Sec. 3.3.5 and Algorithm 2: importance sampling of the filtered glinty NDF D*^f,
 // returning the half vector and its solid-angle pdf. Include after glints/kemppinen2025.glsl (it uses
-// GlintPixel and the core). CPU twin: sampleHalfVector / samplePriorPdf in engine/glints/kemppinen2025_reference.
+// GlintPixel and the core). CPU twin: sampleHalfVector / samplePriorPdf in engine/reference/kemppinen2025_reference.
 //
 // One sample: a point process by triplanar weight; a level by lambda's roulette (lines 4-6); with probability
 // rho_l a defensive sample of the smooth NDF with density D(h) h.z (the compensation term, which the paper leaves

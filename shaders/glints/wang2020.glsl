@@ -22,12 +22,13 @@
 // Deviations: the paper's tree nodes store id, count, depth, child count and AABB (two float4); ours is an
 // implicit complete tree of counts. The traversal gathers once per pixel in glintSetup (the paper's two-step
 // traversal with a tree cut, Sec. 5), so lights only compare lambdas.
+#include "common/bindings.glsl"
 
 // Glint colour (Sec. 4.5): an RGB tint of the glints, through the RGB-NDF path of lighting.frag.
 #define GLINT_COLOR_D 1
 
-layout(binding = 8) uniform sampler3D u_wangDpf;
-layout(std430, binding = 8) readonly buffer WangQuadtree { uint u_wangCounts[]; };
+layout(binding = UNIT_METHOD_FIRST) uniform sampler3D u_wangDpf;
+layout(std430, binding = BINDING_METHOD_FIRST) readonly buffer WangQuadtree { uint u_wangCounts[]; };
 
 #define WANG_MAX_LAMBDAS 16
 #define WANG_STACK 48

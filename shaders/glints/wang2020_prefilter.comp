@@ -18,14 +18,15 @@
 // Deviations: F is left out of M (Eq. 11) and applied at run time with Schlick at n.o, because F0 is a per-pixel
 // base colour here (the paper prefilters per material). M carries 1 / (h.n) instead of 1 / (i.n) with the cosine
 // of the rendering equation folded in (the same normalization as the light path, see glints/wang2020.glsl).
+#include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "common/constants.glsl"
 #include "common/brdf.glsl"
 #include "common/ibl.glsl"
 #include "glints/wang2020_table.glsl"
 
-layout(binding = 8) uniform sampler3D u_wangDpf;
-layout(std430, binding = 16) writeonly buffer WangPrefiltered { vec4 u_wangTableOut[]; };
+layout(binding = UNIT_METHOD_FIRST) uniform sampler3D u_wangDpf;
+layout(std430, binding = BINDING_IBL_FIRST) writeonly buffer WangPrefiltered { vec4 u_wangTableOut[]; };
 uniform ivec4 u_tableSize;   // NTn, NPn, NTo, NPo
 uniform float u_alpha;
 uniform float u_gamma;       // search cone half-angle, radians

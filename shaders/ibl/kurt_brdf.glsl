@@ -1,6 +1,7 @@
 // The Kurt et al. 2010 BRDF as used by "Real-time Rendering of Glossy Materials with Regular Sampling" (CGI 2014),
 // Sec. 4, shared by the IBL modes regular, fis and reference (CPU reference: engine/ibl/kurt_brdf.cpp).
 // Shading frame: x = t, y = b, z = n. Lobe records and patterns are built by engine/ibl/kurt_ibl_resources.cpp.
+#include "common/bindings.glsl"
 #include "common/constants.glsl"
 
 struct KurtLobeGpu {
@@ -8,23 +9,23 @@ struct KurtLobeGpu {
     vec4 fresnel;     // rgb r0 (negative: the material's metalness-workflow F0)
     vec4 pattern;     // first half vector, count, pdf constant (Eq. 18), xi0
 };
-layout(std430, binding = 16) readonly buffer KurtMaterialBlock { ivec4 u_kurtMaterials[]; };
-layout(std430, binding = 17) readonly buffer KurtLobeBlock { KurtLobeGpu u_kurtLobes[]; };
-layout(std430, binding = 18) readonly buffer KurtPatternBlock { vec4 u_kurtHalfVectors[]; };
+layout(std430, binding = BINDING_IBL_FIRST + 0) readonly buffer KurtMaterialBlock { ivec4 u_kurtMaterials[]; };
+layout(std430, binding = BINDING_IBL_FIRST + 1) readonly buffer KurtLobeBlock { KurtLobeGpu u_kurtLobes[]; };
+layout(std430, binding = BINDING_IBL_FIRST + 2) readonly buffer KurtPatternBlock { vec4 u_kurtHalfVectors[]; };
 
 // With ibl.pyramid = box | gauss4 | gauss6: the environment re-filtered with that pyramid (Sec. 3), else the
 // environment's own box chain (envRadiance). Both apply env.intensity and env.rotation.
 // With ibl.object_maps = 1, pixels of a material with a per-object map (Sec. 3; world frame, rendered radiance)
 // read that map instead; kurtSelectObjectMap picks it once per pixel.
-layout(binding = 16) uniform samplerCube u_kurtEnvironment;
-layout(binding = 17) uniform samplerCube u_kurtObjectMap0;
-layout(binding = 18) uniform samplerCube u_kurtObjectMap1;
-layout(binding = 19) uniform samplerCube u_kurtObjectMap2;
-layout(binding = 20) uniform samplerCube u_kurtObjectMap3;
-layout(binding = 21) uniform samplerCube u_kurtObjectMap4;
-layout(binding = 22) uniform samplerCube u_kurtObjectMap5;
-layout(binding = 23) uniform samplerCube u_kurtObjectMap6;
-layout(std430, binding = 19) readonly buffer KurtObjectMapBlock { int u_kurtObjectMapSlot[]; };
+layout(binding = UNIT_IBL_FIRST) uniform samplerCube u_kurtEnvironment;
+layout(binding = UNIT_IBL_FIRST + 1) uniform samplerCube u_kurtObjectMap0;
+layout(binding = UNIT_IBL_FIRST + 2) uniform samplerCube u_kurtObjectMap1;
+layout(binding = UNIT_IBL_FIRST + 3) uniform samplerCube u_kurtObjectMap2;
+layout(binding = UNIT_IBL_FIRST + 4) uniform samplerCube u_kurtObjectMap3;
+layout(binding = UNIT_IBL_FIRST + 5) uniform samplerCube u_kurtObjectMap4;
+layout(binding = UNIT_IBL_FIRST + 6) uniform samplerCube u_kurtObjectMap5;
+layout(binding = UNIT_IBL_FIRST + 7) uniform samplerCube u_kurtObjectMap6;
+layout(std430, binding = BINDING_IBL_FIRST + 3) readonly buffer KurtObjectMapBlock { int u_kurtObjectMapSlot[]; };
 int g_kurtObjectMap = -1;
 
 void kurtSelectObjectMap(int materialId) {

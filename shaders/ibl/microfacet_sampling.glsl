@@ -4,7 +4,7 @@
 // the same Lambert + Cook-Torrance model as the light loop of lighting.frag (D = the glint method's NDF on glinty
 // materials, the smooth NDF otherwise). Deviation from the `prefiltered` mode: the diffuse term is not weighted by
 // (1 - specular albedo), so a Monte Carlo mode and a light agree on what the surface reflects.
-// CPU twin: engine/render/ibl_sampling_reference.{h,cpp}.
+// CPU twin: engine/reference/ibl_sampling_reference.{h,cpp}.
 
 // PCG-RXS-M-XS 32 (O'Neill 2014) step: uniform floats in [0, 1) with 24 bits.
 float iblRandom(inout uint state) {

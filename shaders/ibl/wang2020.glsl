@@ -8,10 +8,11 @@
 // split-sum baseline (common/ibl.glsl). Diffuse: the SH irradiance (Sec. 5 "Other materials": a prefiltered map).
 // Deviation: F by Schlick at n.o on the filtered radiance (the table has no F, see the prefilter's header).
 // Deterministic: one evaluation, sampleIndex unused (the prefilter already integrated the environment).
+#include "common/bindings.glsl"
 #include "glints/wang2020_table.glsl"
 
 // Entry 0: the resolution (NTn, NPn, NTo, NPo); entries 1..: the table (layout in glints/wang2020_prefilter.comp).
-layout(std430, binding = 16) readonly buffer WangGlintTable { vec4 u_wangGlintTable[]; };
+layout(std430, binding = BINDING_IBL_FIRST) readonly buffer WangGlintTable { vec4 u_wangGlintTable[]; };
 
 vec4 wangTableEntry(int tn, int pn, int to, int po) {
     ivec4 n = ivec4(u_wangGlintTable[0] + 0.5);
@@ -51,7 +52,7 @@ vec4 wangGlintTable(vec3 nWorld, vec3 toEye) {
 // the ray point by less than 0.5 m, the assumed thickness). Off-screen or behind the camera: visible.
 // The 0/1 result goes to the alpha of the environment-glint target; the post pass blurs it with the paper's
 // 9-tap Gaussian into the soft-shadow weight delta (shaders/post/glint_occlusion_blur.frag).
-layout(binding = 5) uniform sampler2D u_wangDepth;   // the lighting pass's depth (reversed Z), unit 5
+layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D u_wangDepth;   // the lighting pass's depth (reversed Z), unit 5
 
 float wangDirectionalOcclusion(vec3 position, vec3 n, vec3 toEye) {
     vec3 dir = reflect(-toEye, n);

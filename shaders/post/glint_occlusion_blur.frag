@@ -4,7 +4,7 @@
 // glints are multiplied by delta and the light glints added (the result the glint blur, glint_blur.frag, spreads).
 // Separable, two draws: u_pass 0 sums along x into (sum w m v, sum w m), u_pass 1 along y and divides.
 // Weights u_weights[|k|]: binomial coefficients C(2r, r + k) / 4^r, the discrete Gaussian of that width (sigma =
-// sqrt(r / 2) pixels), computed once per frame on the CPU (engine/render/glint_post.cpp).
+// sqrt(r / 2) pixels), computed once per frame on the CPU (engine/glints/wang2020_post_pass.cpp).
 // Deviation: only glinty pixels (mask m) contribute and the weights are renormalised over them, so visibility does
 // not bleed in from the background or from other materials, which have none; the paper does not say how it
 // treats them. Taps outside the image are skipped the same way.

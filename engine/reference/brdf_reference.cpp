@@ -1,4 +1,4 @@
-#include "render/brdf_reference.h"
+#include "reference/brdf_reference.h"
 
 #include <algorithm>
 #include <cmath>

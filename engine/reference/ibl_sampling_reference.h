@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "glints/kemppinen2025_reference.h"
+#include "reference/kemppinen2025_reference.h"
 
 namespace glimmer::iblref {
 

@@ -3,10 +3,10 @@
 #pragma once
 #include <memory>
 
-#include "glints/methods.h"
+#include "ibl/ibl_modes.h"
 
 namespace glimmer {
 
-std::unique_ptr<GlintMethodResources> createWang2020EnvironmentResources();
+std::unique_ptr<IblModeResources> createWang2020EnvironmentResources();
 
 }  // namespace glimmer

@@ -1,9 +1,9 @@
-#include "glints/zirr2016_reference.h"
+#include "reference/zirr2016_reference.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "render/brdf_reference.h"
+#include "reference/brdf_reference.h"
 
 namespace glimmer::zirr2016 {
 

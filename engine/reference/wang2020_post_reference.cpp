@@ -1,28 +1,8 @@
-#include "render/glint_post.h"
+#include "reference/wang2020_post_reference.h"
 
-#include <string>
-
-#include "core/error.h"
+#include "glints/wang2020_post_pass.h"
 
 namespace glimmer::glintpost {
-
-int radiusOf(int taps) { return taps < 1 ? 0 : (taps - 1) / 2; }
-
-std::vector<float> binomialWeights(int radius) {
-    if (radius < 0 || radius > kMaxRadius)
-        throw Error("glint post pass: blur radius " + std::to_string(radius) + " outside 0.." +
-                    std::to_string(kMaxRadius));
-    // Row 2r of Pascal's triangle in doubles (C(30, 15) ~ 1.6e8 is exact), divided by 4^r.
-    std::vector<double> row(size_t(2 * radius + 1), 0.0);
-    row[0] = 1.0;
-    for (int n = 1; n <= 2 * radius; ++n)
-        for (int k = n; k > 0; --k) row[size_t(k)] += row[size_t(k - 1)];
-    double total = 0.0;
-    for (double c : row) total += c;
-    std::vector<float> weights(size_t(radius + 1));
-    for (int k = 0; k <= radius; ++k) weights[size_t(k)] = float(row[size_t(radius + k)] / total);
-    return weights;
-}
 
 std::vector<float> referencePostPass(const std::vector<float>& environment, const std::vector<float>& lights,
                                      int width, int height, int occlusionTaps, int glintTaps) {

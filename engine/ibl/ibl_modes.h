@@ -4,6 +4,7 @@
 // IBL_<NAME>) and whether it is a Monte Carlo estimator whose frames are accumulated (--spp, the still window).
 // Adding a mode: write its shader file, add a function returning its IblMode in ibl_modes.cpp, list it in iblModes().
 #pragma once
+#include "common/bindings.glsl"
 #include <functional>
 #include <memory>
 #include <string>
@@ -14,9 +15,33 @@
 
 namespace glimmer {
 
+struct Scene;
+namespace ibl {
+class SceneCapture;
+}
+
 // GPU resources of a mode (sample patterns, tables). Created when the mode is selected; bind() runs before every
-// lighting pass. Modes use texture units 16-23 and buffer bindings 16-23.
-using IblModeResources = GlintMethodResources;
+// lighting pass. Modes use the texture units and buffer bindings UNIT_/BINDING_IBL_FIRST..LAST of shaders/common/bindings.glsl.
+class IblModeResources {
+public:
+    virtual ~IblModeResources() = default;
+    // Optional: runs before any pass of a frame with the mode's parameter values, the scene, the environment's
+    // source cube (0 when none) and a way to render the scene (per-object environment maps), so resources that
+    // depend on them (sample patterns per material, filtered copies of the environment) rebuild when they change.
+    virtual void prepare(const ParamValues& values, const Scene& scene, unsigned environmentSource,
+                         ibl::SceneCapture& capture) {
+        (void)values; (void)scene; (void)environmentSource; (void)capture;
+    }
+    // Optional: runs after the G-buffer pass with the environment bound, with the glint method's resources (null
+    // when the method has none), for data built from both (the wang2020 glint table prefilters the environment
+    // with the method's DPF). Returns the passes that ran (name, wall ms) for --stats.
+    virtual std::vector<std::pair<std::string, double>> update(const ParamValues& values,
+                                                               const GlintMethodResources* methodResources) {
+        (void)values; (void)methodResources;
+        return {};
+    }
+    virtual void bind() = 0;
+};
 
 struct IblMode {
     std::string id;           // --ibl name, e.g. "prefiltered"
@@ -41,7 +66,7 @@ void checkIblModeMethod(const IblMode& mode, const std::string& methodId);
 std::string iblParamsGlsl(const IblMode& mode);
 std::vector<float> packIblParams(const IblMode& mode, const ParamValues& values);
 
-constexpr unsigned kIblParamBinding = 5;
+constexpr unsigned kIblParamBinding = BINDING_IBL_PARAMS;
 constexpr int kMaxIblParams = 32;
 
 }  // namespace glimmer

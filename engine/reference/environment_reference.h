@@ -1,7 +1,8 @@
 // CPU references for the environment-lighting passes (shaders/env/*.comp, shaders/common/ibl.glsl): the same
 // direction conventions and microfacet terms, evaluated by brute force (quadrature over every cube texel or
 // thousands of samples) so tests can check the GPU precomputation and the split-sum result against them.
-// Straightforward and slow on purpose; nothing here runs in the renderer except the shared conventions.
+// Straightforward and slow on purpose; nothing here runs in the renderer (the shared cube conventions are in
+// render/cube_texels.h).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "render/cube_texels.h"
 
 namespace glimmer::envref {
 
@@ -21,20 +23,6 @@ glm::vec3 equirectToDirection(glm::vec2 uv);
 // Bilinear sample with the texture unit's rules: texel centres at (i + 0.5) / size, u wraps, v clamps.
 glm::vec3 sampleEquirect(const ImageF& image, glm::vec3 direction);
 
-// GL cube-map conventions (OpenGL 4.5 spec, Table 8.19): face order +X, -X, +Y, -Y, +Z, -Z; (x, y) is the texel in
-// memory order (row y = 0 first), as imageStore and glGetTextureImage see it.
-glm::vec3 cubeTexelDirection(int face, int x, int y, int size);   // unit direction through the texel centre
-double cubeTexelSolidAngle(int x, int y, int size);                // exact, sums to 4 pi over the 6 faces
-
-// One cube-map level read back from the GPU: 6 faces of size x size RGBA floats, faces in GL order.
-struct CubeImage {
-    int size = 0;
-    std::vector<float> rgba;    // 6 * size * size * 4
-    glm::vec3 texel(int face, int x, int y) const {
-        const float* p = &rgba[((size_t(face) * size + y) * size + x) * 4];
-        return {p[0], p[1], p[2]};
-    }
-};
 // Bilinear lookup of the face texel the direction hits (no filtering across faces; tests avoid seams).
 glm::vec3 sampleCube(const CubeImage& cube, glm::vec3 direction);
 

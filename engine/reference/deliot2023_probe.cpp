@@ -1,4 +1,5 @@
-#include "glints/deliot2023_probe.h"
+#include "reference/deliot2023_probe.h"
+#include "common/bindings.glsl"
 
 #include "core/files.h"
 #include "gl/handles.h"
@@ -33,9 +34,9 @@ std::vector<GlintProbeOutput> GlintMethodProbe::run(const std::vector<GlintProbe
     gl::Buffer paramBuffer = gl::createBuffer(GLsizeiptr(params.size() * sizeof(float)), params.data(), 0);
     gl::Buffer inBuffer = gl::createBuffer(GLsizeiptr(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
     gl::Buffer outBuffer = gl::createBuffer(GLsizeiptr(packed.size() * sizeof(glm::vec4)), nullptr, 0);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3, paramBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, inBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, outBuffer.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, paramBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST - 1, inBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST, outBuffer.id());
     if (resources_) {
         resources_->update(values_);
         resources_->bind();

@@ -1,4 +1,4 @@
-#include "glints/kemppinen2025_reference.h"
+#include "reference/kemppinen2025_reference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,15 +7,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "glints/deliot2023_noise.h"
+
 namespace glimmer::deliot2023 {
 
-constexpr int kNoiseSize = 1024;   // DELIOT_NOISE_SIZE in deliot2023_binomial.glsl
-constexpr uint32_t kNoiseSeed = 0x9e3779b9u;
-
-// R32UI texels, row-major; each packs (uniform in [0, 1), standard normal) as 16-bit fixed point (low half: uniform
-// ((k + 0.5) / 65536)^4, high half: signed Gaussian k / 4096).
-// Deterministic for a seed.
-std::vector<uint32_t> makeNoiseTexels(uint32_t seed = kNoiseSeed);
 struct NoisePair {
     float uniform, gaussian;
 };

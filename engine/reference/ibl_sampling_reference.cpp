@@ -1,9 +1,9 @@
-#include "render/ibl_sampling_reference.h"
+#include "reference/ibl_sampling_reference.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "render/brdf_reference.h"
+#include "reference/brdf_reference.h"
 
 namespace glimmer::iblref {
 

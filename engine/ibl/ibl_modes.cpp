@@ -1,10 +1,10 @@
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 
 #include <algorithm>
 
 #include "core/error.h"
 #include "ibl/kurt_ibl_resources.h"
-#include "glints/wang2020_environment.h"
+#include "ibl/wang2020_environment.h"
 
 namespace glimmer {
 
@@ -22,7 +22,7 @@ static IblMode prefilteredMode() {
 }
 
 // Wang, Deng & Holzschuch 2020, Sec. 4.2: the prefiltered 4D glint table combined with the glint method's per-pixel
-// particle count (shaders/ibl/wang2020.glsl; prefilter pass engine/glints/wang2020_environment.cpp).
+// particle count (shaders/ibl/wang2020.glsl; prefilter pass engine/ibl/wang2020_environment.cpp).
 static IblMode wang2020Mode() {
     return {"wang2020",
             "Wang et al. 2020 prefiltered glint table (needs --method wang2020)",

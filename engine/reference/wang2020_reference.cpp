@@ -1,4 +1,4 @@
-#include "glints/wang2020_reference.h"
+#include "reference/wang2020_reference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
-#include "glints/wang2020_environment.h"
+#include "ibl/wang2020_environment.h"
+#include "common/bindings.glsl"
 
 #include <array>
 
@@ -11,8 +12,9 @@ namespace glimmer {
 
 namespace {
 
-// What the prefiltered table depends on besides the DPF: the environment's source cube (unit 6) and its
-// uniform block (intensity, rotation; binding 7), read back from the bound state.
+// What the prefiltered table depends on besides the DPF: the environment's prefiltered cube array
+// (UNIT_ENV_SPECULAR) and its uniform block (intensity, rotation; BINDING_ENVIRONMENT), read back from the bound
+// state.
 struct EnvironmentKey {
     GLint cube = 0;
     std::array<float, 8> params{};
@@ -23,21 +25,22 @@ EnvironmentKey currentEnvironment() {
     EnvironmentKey key;
     GLint previousUnit = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &previousUnit);
-    glActiveTexture(GL_TEXTURE0 + 6);
+    glActiveTexture(GL_TEXTURE0 + UNIT_ENV_SPECULAR);
     glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, &key.cube);
     glActiveTexture(GLenum(previousUnit));
     GLint buffer = 0;
-    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 7, &buffer);
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, BINDING_ENVIRONMENT, &buffer);
     if (buffer != 0)  // EnvironmentUniforms: params and rotation follow the 9 SH vectors
         glGetNamedBufferSubData(GLuint(buffer), 9 * 16, GLsizeiptr(sizeof(float) * 8), key.params.data());
     return key;
 }
 
-class Wang2020EnvironmentResources : public GlintMethodResources {
+class Wang2020EnvironmentResources : public IblModeResources {
 public:
-    std::vector<std::pair<std::string, double>> update(const ParamValues& values) override {
+    std::vector<std::pair<std::string, double>> update(const ParamValues& values,
+                                                       const GlintMethodResources* methodResources) override {
         std::vector<std::pair<std::string, double>> ran;
-        Wang2020Resources* glints = Wang2020Resources::active();
+        const auto* glints = dynamic_cast<const Wang2020Resources*>(methodResources);
         if (!glints || glints->dpfTexture() == 0) return ran;  // another glint method: the shader falls back
         EnvironmentKey env = currentEnvironment();
         auto chosen = values.find("prefilter");  // ibl.prefilter: 0 dpf (the paper's, default), 1 cone
@@ -72,7 +75,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlintMethodResources> createWang2020EnvironmentResources() {
+std::unique_ptr<IblModeResources> createWang2020EnvironmentResources() {
     return std::make_unique<Wang2020EnvironmentResources>();
 }
 

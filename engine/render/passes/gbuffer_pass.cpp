@@ -1,0 +1,25 @@
+#include "render/passes/gbuffer_pass.h"
+
+#include "gl/pipeline_state.h"
+
+namespace glimmer {
+
+GBufferPass::GBufferPass(const std::filesystem::path& shaderRoot)
+    : program_(shaderRoot, {"gbuffer", {{GL_VERTEX_SHADER, "gbuffer.vert"}, {GL_FRAGMENT_SHADER, "gbuffer.frag"}}}) {}
+
+void GBufferPass::execute(const FrameContext& frame) {
+    gl::PipelineState state = gl::fullscreenState(frame.targets.gbufferFramebuffer(), frame.width, frame.height);
+    state.depthTest = true;
+    state.depthFunc = GL_GREATER;
+    state.depthWrite = true;
+    state.apply();
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
+        glClearNamedFramebufferfv(frame.targets.gbufferFramebuffer(), GL_COLOR, i, zero);
+    const float clearDepth = 0.0f;
+    glClearNamedFramebufferfv(frame.targets.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
+    program_.use();
+    frame.gpuScene.drawInstances(frame.scene);
+}
+
+}  // namespace glimmer

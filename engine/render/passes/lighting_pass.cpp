@@ -1,0 +1,50 @@
+#include "render/passes/lighting_pass.h"
+
+#include "gl/pipeline_state.h"
+#include "common/bindings.glsl"
+
+namespace glimmer {
+
+gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId) {
+    const GlintMethod& method = findGlintMethod(methodId);
+    const IblMode& ibl = findIblMode(iblId);
+    checkIblModeMethod(ibl, method.id);
+    gl::ProgramDesc desc;
+    desc.name = "lighting/" + method.id + (ibl.id == "prefiltered" ? "" : "/" + ibl.id);
+    desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
+    desc.defines = {method.define, ibl.define};
+    if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
+    desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
+    desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
+    desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
+    return desc;
+}
+
+LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const std::string& methodId,
+                           const std::string& iblId)
+    : program_(shaderRoot, lightingProgramDesc(methodId, iblId)) {}
+
+void LightingPass::execute(const FrameContext& frame) {
+    const bool glintTargets = findGlintMethod(frame.settings.method).glintPostPass;
+    gl::PipelineState state = gl::fullscreenState(
+        glintTargets ? frame.targets.lightingGlintFramebuffer() : frame.targets.hdrFramebuffer(), frame.width,
+        frame.height);
+    if (frame.blendSample) {
+        // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1). Only the HDR target blends (the
+        // glint targets hold this sample's glints; the method's post pass adds them with the same weight).
+        state.blend = {true, 0, GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA, GL_CONSTANT_ALPHA,
+                       GL_ONE_MINUS_CONSTANT_ALPHA, {0.0f, 0.0f, 0.0f, frame.blendWeight}};
+    }
+    state.apply();
+    program_.use();
+    if (frame.methodResources) frame.methodResources->bind();
+    if (frame.iblResources) frame.iblResources->bind();
+    frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
+    for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
+        glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
+    glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
+    glBindVertexArray(frame.emptyVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace glimmer

@@ -1,0 +1,23 @@
+#include "render/renderer_capture.h"
+
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+
+namespace glimmer {
+
+RendererCapture::RendererCapture(std::filesystem::path shaderRoot) : shaderRoot_(std::move(shaderRoot)) {}
+RendererCapture::~RendererCapture() = default;
+
+std::vector<std::vector<float>> RendererCapture::renderHdr(const Scene& scene, const std::vector<Camera>& cameras,
+                                                           int size) {
+    if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderRoot_, RenderSettings{});
+    GpuScene gpuScene(scene);
+    std::vector<std::vector<float>> images;
+    for (const Camera& camera : cameras) {
+        renderer_->render(scene, gpuScene, camera, size, size);
+        images.push_back(renderer_->readHdr());
+    }
+    return images;
+}
+
+}  // namespace glimmer
