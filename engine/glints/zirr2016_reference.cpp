@@ -38,7 +38,8 @@ float binomial(float N, float p, float u) {
     if (p >= 1.0f) return std::floor(N);
     float mean = N * p;
     if (mean > 5.0f)
-        return std::clamp(std::floor(mean + std::sqrt(mean * (1.0f - p)) * inverseNormal(u)), 0.0f, std::floor(N));
+        return std::clamp(std::floor(mean + std::sqrt(mean * (1.0f - p)) * inverseNormal(u) + 0.5f), 0.0f,
+                          std::floor(N));
     float logMiss = p < 0.05f ? -p * (1.0f + p * (0.5f + p * (1.0f / 3.0f + p * 0.25f))) : std::log(1.0f - p);
     float pmf = std::exp(N * logMiss), cdf = pmf;
     float odds = p / std::max(1.0f - p, 1e-30f);
