@@ -27,7 +27,19 @@ static GlintMethod deliot2023Method() {
               "R, ratio of micro- to macro-roughness: lower = fewer, brighter glints (useful 0.005-0.25)", {}, false,
               true},
              {"density_randomization", 2.0f, 0.0f, 10.0f, "std. deviation of the per-vertex log density"},
-             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "grid cell size in pixels across the footprint's minor axis"}},
+             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "grid cell size in pixels across the footprint's minor axis"},
+             // Where the paper is vague or the authors' supplemental code differs from its text, the default is
+             // the authors' code (it made the paper's figures); the other reading stays as a choice (docs/deliot2023.md).
+             {"normalization", 0.0f, 0.0f, 1.0f,
+              "vertex: each grid vertex's count over its own randomized facets (authors' code); footprint: the "
+              "summed count over the footprint's total facets",
+              {"vertex", "footprint"}},
+             {"angular_grid", 0.0f, 0.0f, 1.0f,
+              "Eq. 14 cell width: projected = R in units of the projected h (authors' code); lobe = sqrt(R / D(n))",
+              {"projected", "lobe"}},
+             {"gate", 0.0f, 0.0f, 1.0f,
+              "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
+              {"soft", "hard"}}},
             createDeliot2023Resources};
 }
 
@@ -36,10 +48,13 @@ static GlintMethod zirr2016Method() {
     return {"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
             "glints/zirr2016.glsl",
             "Zirr & Kaplanyan 2016, Real-time rendering of procedural multiscale materials, I3D 2016",
+            // The authors' shader's parameters with their defaults, except `variation` (raises the mean; left out).
             {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
-             {"microfacet_roughness", 0.005f, 0.001f, 1.0f, "R, fraction of facets reflecting at the NDF peak", {},
-              false, true},
-             {"screen_space_scale", 1.5f, 0.1f, 10.0f, "mip texel size in pixels across the footprint's minor axis"}}};
+             {"search_cone", 0.01f, 0.001f, 0.2f,
+              "gamma: half-angle (radians) of the cone around h in which a facet reflects; also the angular cell",
+              {}, false, true},
+             {"dynamic_range", 50000.0f, 1.0f, 1e9f, "largest D / D_smooth a pixel may reach (their clamp)", {}, false,
+              true}}};
 }
 
 // Kemppinen et al. 2025: semi-discrete NDF as a Gaussian mixture on an implicit 4D grid (shaders/glints/
@@ -66,6 +81,15 @@ static GlintMethod kemppinen2025Method() {
                 {"color_variation", 0.0f, 0.0f, 1.0f, "per-glint colour variation (Sec. 3.3.6; mean colour white)"},
                 {"triplanar", 0.0f, 0.0f, 1.0f, "UV-free triplanar mode: 3 world-plane processes (Sec. 3.3.6)", {},
                  true},
+                // Defaults follow the authors' published shader where it differs from our reading of the paper
+                // (docs/kemppinen2025.md); the paper's reading stays as a choice.
+                {"angular_covariance", 0.0f, 0.0f, 1.0f,
+                 "Sigma_a = d (alpha* A*^-1)^2 with d = pi D(h) (authors' code, |J| of the mapping) or d = D(h)",
+                 {"pi_d", "d"}},
+                {"lod", 0.0f, 0.0f, 1.0f,
+                 "level: authors = log2(f max|J_i| sqrt(N)) + 2^f (authors' code); cells = log2(6 sigma_major "
+                 "sqrt(N)) (spatial cells 3-6 filter deviations, our earlier reading)",
+                 {"authors", "cells"}},
             },
             nullptr};
 }

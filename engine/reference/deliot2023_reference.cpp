@@ -19,16 +19,26 @@ float probAtLeastOne(float N, float p) {
     return e > -0.05f ? -e * (1.0f + e * (0.5f + e * (1.0f / 6.0f + e * (1.0f / 24.0f)))) : 1.0f - std::exp(e);
 }
 
-float gatedBinomial(float N, float p, float u, float g) {
+float softGateHalfWidth(float P1) {
+    return 0.1f * std::clamp(10.0f * P1, 0.0f, 1.0f) * std::clamp(10.0f * (1.0f - P1), 0.0f, 1.0f);
+}
+
+static float smoothstep(float e0, float e1, float x) {
+    float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+float gatedBinomial(float N, float p, float u, float g, bool softGate) {
     if (!(N > 0.0f) || !(p > 0.0f)) return 0.0f;
     p = std::min(p, 1.0f);
     float P1 = probAtLeastOne(N, p);
-    if (u >= P1) return 0.0f;
-    if (N <= 1.0f) return 1.0f;
-    float rest = N - 1.0f;
+    float half = softGate ? softGateHalfWidth(P1) : 0.0f;
+    float gate = half > 0.0f ? 1.0f - smoothstep(P1 - half, P1 + half, u) : (u < P1 ? 1.0f : 0.0f);
+    if (gate <= 0.0f) return 0.0f;
+    float rest = std::max(N - 1.0f, 0.0f);
     float mu = rest * p;
     float sigma = std::sqrt(rest * p * (1.0f - p));
-    return 1.0f + std::clamp(std::floor(mu + sigma * g), 0.0f, std::floor(rest));
+    return gate * (1.0f + std::clamp(std::floor(mu + sigma * g), 0.0f, std::floor(rest)));
 }
 
 Moments exactBinomialMoments(double N, double p) {

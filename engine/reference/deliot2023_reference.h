@@ -18,7 +18,9 @@ NoisePair unpackNoisePair(uint32_t packed);
 
 // Mirrors of the shader functions (float arithmetic in the same order).
 float probAtLeastOne(float N, float p);                       // Eq. 16 (N < 1: N p)
-float gatedBinomial(float N, float p, float u, float g);      // Eq. 17-18
+// Eq. 17-18; softGate: the authors' soft gate 1 - smoothstep(P1 - w, P1 + w, u), w = softGateHalfWidth(P1).
+float gatedBinomial(float N, float p, float u, float g, bool softGate = false);
+float softGateHalfWidth(float P1);   // 0.1 sat(10 P1) sat(10 (1 - P1))
 
 // The law the approximation targets: b(N, p) for integer N; for N < 1 a single trial of probability N p.
 struct Moments {

@@ -29,8 +29,12 @@ Params paramsFrom(const ParamValues& values) {
     p.roughnessAnisotropy = get("roughness_anisotropy");
     p.colorVariation = get("color_variation");
     p.triplanar = get("triplanar") > 0.5;
+    p.piCovariance = get("angular_covariance") < 0.5;
+    p.authorsLod = get("lod") < 0.5;
     return p;
 }
+
+double glintWidthScale(const Params& params) { return params.piCovariance ? std::sqrt(kPi) : 1.0; }
 
 glm::dvec2 splitAlpha(double alpha, double roughnessAnisotropy) {
     double r = std::sqrt(roughnessAnisotropy);
@@ -126,7 +130,7 @@ double intervalMass(double x, double sigma, double lo, double hi) {
 }
 
 static Process makeProcess(glm::dvec2 uv, glm::dvec2 dx, glm::dvec2 dy, glm::dvec2 stretch, double resolution,
-                           double filterSize, double weight) {
+                           double filterSize, bool authorsLod, double weight) {
     Process p;
     p.weight = weight;
     p.xs = stretch * uv;
@@ -138,7 +142,10 @@ static Process makeProcess(glm::dvec2 uv, glm::dvec2 dx, glm::dvec2 dy, glm::dve
     p.covariance = glm::dmat2(a, b, b, c);
     double mean = 0.5 * (a + c), diff = 0.5 * (a - c);
     double major = std::sqrt(mean + std::sqrt(diff * diff + b * b));
-    p.lambda = std::clamp(std::log2(2.0 * kKappa * major * resolution), 0.0, kMaxLevel);
+    double lambda = authorsLod ? std::log2(filterSize * std::max(glm::length(jx), glm::length(jy)) * resolution) +
+                                     std::exp2(filterSize)
+                               : std::log2(2.0 * kKappa * major * resolution);
+    p.lambda = std::clamp(lambda, 0.0, kMaxLevel);
     return p;
 }
 
@@ -154,7 +161,8 @@ PixelSetup setupPixel(const Params& params, const Surface& s) {
     px.angularStretch = 1.0 / stretch;
     if (!params.triplanar) {
         px.processCount = 1;
-        px.process[0] = makeProcess(s.uv, s.duvdx, s.duvdy, stretch, px.resolution, params.filterSize, 1.0);
+        px.process[0] =
+            makeProcess(s.uv, s.duvdx, s.duvdy, stretch, px.resolution, params.filterSize, params.authorsLod, 1.0);
     } else {
         px.processCount = 3;
         glm::dvec3 w = glm::abs(s.normal);
@@ -164,7 +172,7 @@ PixelSetup setupPixel(const Params& params, const Surface& s) {
         };
         for (int q = 0; q < 3; ++q)
             px.process[q] = makeProcess(plane(s.position, q), plane(s.dPdx, q), plane(s.dPdy, q), stretch,
-                                        px.resolution, params.filterSize, w[q]);
+                                        px.resolution, params.filterSize, params.authorsLod, w[q]);
     }
     return px;
 }
@@ -174,11 +182,11 @@ glm::dvec3 filteredNdf(const Params& params, const PixelSetup& px, int ndf, cons
     double d = smoothD(h, px.alpha, ndf);
     if (d < 1e-20) return glm::dvec3(0.0);   // as in the shader: D underflows there in float
     glm::dvec2 xa = toPrior(h, px.alpha, ndf);
-    glm::dvec2 sigmaA = params.microRoughness * std::sqrt(d) * px.angularStretch;
+    glm::dvec2 sigmaA = params.microRoughness * glintWidthScale(params) * std::sqrt(d) * px.angularStretch;
     // The angular grid lives in x_a' = x_a / A*^-1, where the lobe is isotropic (kemppinen2025.glsl).
     glm::dvec2 extent = 1.0 / px.angularStretch;
     glm::dvec2 xaPrime = xa * extent;
-    double sigmaIso = params.microRoughness * std::sqrt(d);
+    double sigmaIso = params.microRoughness * glintWidthScale(params) * std::sqrt(d);
     double angularNorm = 1.0 / (2.0 * kPi * sigmaA.x * sigmaA.y);
     double squareMass = intervalMass(xa.x, sigmaA.x, 0.0, 1.0) * intervalMass(xa.y, sigmaA.y, 0.0, 1.0);
     int side = params.neighbors == 16 ? 4 : 2;
@@ -270,7 +278,7 @@ double defensivePriorPdf(const glm::dvec2& xa, const glm::dvec2& alpha, int ndf)
 
 double defensiveProbability(const Params& params, const PixelSetup& px, int ndf, int level) {
     int side = params.neighbors == 16 ? 4 : 2;
-    double sigma = params.microRoughness * std::sqrt(smoothD(glm::dvec3(0, 0, 1), px.alpha, ndf));
+    double sigma = params.microRoughness * glintWidthScale(params) * std::sqrt(smoothD(glm::dvec3(0, 0, 1), px.alpha, ndf));
     double inside = std::erf(side * std::exp2(-level) / (2.0 * std::sqrt(2.0) * sigma));
     return std::max(0.1, 1.0 - inside * inside);
 }
@@ -323,7 +331,7 @@ int blockTerms(const Params& params, const PixelSetup& px, int ndf, int q, int l
             if (!(w > 0.0)) continue;
             double d = smoothD(fromPrior(ga, px.alpha, ndf), px.alpha, ndf);
             if (d < 1e-20) continue;
-            terms[count++] = {centre, params.microRoughness * std::sqrt(d), w};
+            terms[count++] = {centre, params.microRoughness * glintWidthScale(params) * std::sqrt(d), w};
         }
     }
     return count;

@@ -23,7 +23,11 @@ struct Params {
     double roughnessAnisotropy = 1.0;
     double colorVariation = 0.0;
     bool triplanar = false;
+    bool piCovariance = true;       // angular_covariance: d = pi D(h) (authors' code) or D(h)
+    bool authorsLod = true;         // lod: log2(f max|J_i| sqrt(N)) + 2^f (authors' code) or log2(6 sigma sqrt(N))
 };
+// alpha* as it enters Sigma_a = d (alpha* A*^-1)^2: with d = pi D(h) the lobe is sqrt(pi) wider than with D(h).
+double glintWidthScale(const Params& params);
 // Reads the values (missing keys take the table's defaults).
 Params paramsFrom(const ParamValues& values);
 

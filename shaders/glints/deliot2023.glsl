@@ -12,6 +12,9 @@
 // Sec. 6.2: each grid is a simplex (triangle) grid: 3 vertices with barycentric weights (hexagonal glints).
 // Eq. 14: bilinear interpolation over 4 cells of a hemispherical grid indexed by the orthographic projection of h.
 // Sec. 6.3: gated Gaussian binomial with random numbers from a texture (glints/deliot2023_binomial.glsl).
+// Where the paper is vague or the authors' supplemental code differs from its text, the default follows their code
+// and the other reading is a parameter (docs/deliot2023.md): per-vertex normalization of the randomized counts
+// (`normalization`), an angular cell R wide in projected-h units (`angular_grid`), the soft gate (`gate`).
 // Total: 4 grids x 3 spatial vertices x 4 angular cells = 48 binomial evaluations per pixel and light.
 // Per-pixel work (footprint, grids, vertex hashes, facet counts) is in glintSetup, shared by every light.
 #include "glints/deliot2023_binomial.glsl"
@@ -22,8 +25,9 @@ const int DELIOT_MAX_RATIO_LEVEL = 16;   // numeric guard only (ratio 65536): ne
 struct GlintPixel {
     ivec2 texel[DELIOT_VERTICES];        // noise texel of each spatial vertex (hash of cell id and grid seed)
     float trials[DELIOT_VERTICES];       // w_i N_i: this grid's share of the footprint's facets (Eq. 10)
-    float spatialWeight[DELIOT_VERTICES];// barycentric weight of the vertex in its simplex (Sec. 6.2)
-    float invTotalFacets;                // 1 / sum(spatialWeight * trials): normalizes the count (Eq. 3)
+    float countWeight[DELIOT_VERTICES];  // weight of the vertex's count in D R / D(n) (Eq. 3, normalization)
+    float invTotalFacets;                // 1 / sum(barycentric weight * trials): the footprint's facets
+    bool softGate;                       // the authors' soft gate instead of Eq. 18's Heaviside
     float angularCellSize;               // cell of the hemispherical grid in projected-h units (Eq. 14)
     float Dn;                            // D(n), the NDF at the shading normal (Eq. 4)
     vec4 footprint;                      // anisotropy ratio, LOD, ratio level, orientation (radians)
@@ -140,6 +144,8 @@ GlintPixel glintSetup(GlintSurface s) {
     // --- Sec. 6.2: simplex surface grid per virtual grid; Sec. 4.1 stratified facets: N = density x cell area.
     float baseLogDensity = P_LOG_DENSITY;
     float total = 0.0;
+    float vertexFacets[DELIOT_VERTICES];
+    float barycentric[DELIOT_VERTICES];
     for (int i = 0; i < 4; ++i) {
         float angle;
         uint seed;
@@ -176,16 +182,27 @@ GlintPixel glintSetup(GlintSurface s) {
             float logDensity = clamp(baseLogDensity + P_DENSITY_RANDOMIZATION * gauss, 0.0, 50.0);
             float facets = exp(logDensity) * cellArea * max(s.densityScale, 0.0);
             px.trials[index] = grids[i].weight * facets;
-            px.spatialWeight[index] = max(lambda[v], 0.0);
-            total += px.spatialWeight[index] * px.trials[index];
+            vertexFacets[index] = facets;
+            barycentric[index] = max(lambda[v], 0.0);
+            total += barycentric[index] * px.trials[index];
         }
     }
-    // Normalize by the facets actually distributed (randomized counts included) so that E[D_P] = D exactly.
     px.invTotalFacets = total > 0.0 ? 1.0 / total : 0.0;
+    // Eq. 3's "/ N". vertex (authors' supplemental, where the density randomization comes from): each vertex's
+    // count over its own randomized facets, weighted by barycentric x tetrahedral weight, which keeps E[D_P] = D
+    // (the weights sum to 1) and keeps each vertex's clumping. footprint: the summed count over the footprint's
+    // total, also mean-preserving, which averages the randomization away (about 3x lower CV at the defaults).
+    bool perVertex = P_NORMALIZATION < 0.5;
+    for (int v = 0; v < DELIOT_VERTICES; ++v)
+        px.countWeight[v] = perVertex ? (vertexFacets[v] > 0.0 ? barycentric[v] / vertexFacets[v] : 0.0)
+                                      : barycentric[v] * px.invTotalFacets;
+    px.softGate = P_GATE < 0.5;
     px.Dn = D_smooth(vec3(0.0, 0.0, 1.0), s.alpha, s.ndf);
-    // Eq. 14 hemispherical grid, subdivided for micro-roughness: a cell holds the fraction R of the lobe's
-    // projected area 1 / D(n) (our reading: then sum over the lobe of R D(h)/D(n) per cell is one facet's worth).
-    px.angularCellSize = sqrt(P_MICROFACET_ROUGHNESS / max(px.Dn, 1e-20));
+    // Eq. 14 hemispherical grid, subdivided for micro-roughness. projected (authors' code): a cell is R wide in
+    // units of the orthographic projection of h, which sets how long a glint lives as the light or view moves
+    // (their grid indexes |h.x|, |h.y|, mirroring the pattern about the tangent axes: not reproduced). lobe (an
+    // earlier reading): a cell holds the fraction R of the lobe's projected area 1 / D(n), sqrt(R / D(n)) wide.
+    px.angularCellSize = P_ANGULAR_GRID < 0.5 ? P_MICROFACET_ROUGHNESS : sqrt(P_MICROFACET_ROUGHNESS / max(px.Dn, 1e-20));
     px.footprint = vec4(ratio, lod, float(k0) + ratioT, phi);
     return px;
 }
@@ -207,7 +224,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     for (int v = 0; v < DELIOT_VERTICES; ++v) {
         // Eq. 10 + 18: this grid vertex's share w_i N_i of the footprint's facets, drawn from the gated binomial
         // with the random numbers of each of the 4 angular cells (the law's parameters are shared by the 4 draws).
-        DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss);
+        DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss, px.softGate);
         uvec4 packedPairs = deliotNoiseGather(px.texel[v], a0);
         float vertexCount = 0.0;
         for (int a = 0; a < 4; ++a) {
@@ -215,10 +232,10 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
             vertexCount += angularWeight[a] * deliotDrawBinomial(law, rnd.x, rnd.y);
         }
         g_deliotEvaluations += 4;
-        count += px.spatialWeight[v] * vertexCount;
+        count += px.countWeight[v] * vertexCount;
     }
-    // Eq. 3-4: D_P = D(n)/R * count / N.
-    return px.Dn / R * count * px.invTotalFacets;
+    // Eq. 3-4: D_P = D(n)/R * count / N (the / N is in countWeight).
+    return px.Dn / R * count;
 }
 
 vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }

@@ -63,17 +63,23 @@ float deliotProbAtLeastOne(float N, float p) { return deliotProbAtLeastOne(N, p,
 // probability P1 decides whether any facet reflects; if so the count is 1 + a discretized Gaussian approximation of
 // b(N - 1, p) (Eq. 17), clamped to [0, N - 1]. Two random numbers (u uniform in [0, 1), g standard normal), no loops.
 // Eq. 18 prints the gate as H(theta0 - P1); the gate is open with probability P1, i.e. when theta0 < P1.
+// Soft gate (the authors' supplemental code; Eq. 18 is the hard one): the gate is 1 - smoothstep(P1 - w, P1 + w, u)
+// with half-width w = 0.1 sat(10 P1) sat(10 (1 - P1)). The step is symmetric about P1 and w <= min(P1, 1 - P1), so
+// E[gate] = P1 exactly: the mean is kept, sparse regions show more pixels at partial intensity.
 // Non-integer N is allowed (facet counts are expectations over a footprint): N < 1 gives 0 or 1.
 // Split in two: the law's parameters (once per grid vertex and light) and the draw (once per angular cell), so
 // the 4 angular draws of a vertex share one exp and one sqrt.
 struct DeliotBinomialLaw {
-    float P1;       // Eq. 16
-    float mu;       // Eq. 17, Gaussian for b(N - 1, p)
+    float P1;        // Eq. 16
+    float mu;        // Eq. 17, Gaussian for b(N - 1, p)
     float sigma;
-    float maxExtra; // floor(N - 1): the count never exceeds N
+    float maxExtra;  // floor(N - 1): the count never exceeds N
+    float gateHalf;  // half-width of the soft gate (0: Eq. 18's hard gate)
 };
 
-DeliotBinomialLaw deliotBinomialLaw(float N, float p, float logMiss) {
+float deliotSoftGateHalfWidth(float P1) { return 0.1 * clamp(10.0 * P1, 0.0, 1.0) * clamp(10.0 * (1.0 - P1), 0.0, 1.0); }
+
+DeliotBinomialLaw deliotBinomialLaw(float N, float p, float logMiss, bool softGate) {
     DeliotBinomialLaw law;
     bool none = !(N > 0.0) || !(p > 0.0);
     p = min(p, 1.0);
@@ -82,15 +88,19 @@ DeliotBinomialLaw deliotBinomialLaw(float N, float p, float logMiss) {
     law.mu = rest * p;
     law.sigma = sqrt(rest * p * (1.0 - p));
     law.maxExtra = floor(rest);
+    law.gateHalf = softGate ? deliotSoftGateHalfWidth(law.P1) : 0.0;
     return law;
 }
 
 float deliotDrawBinomial(DeliotBinomialLaw law, float u, float g) {
-    if (u >= law.P1) return 0.0;
-    return 1.0 + clamp(floor(law.mu + law.sigma * g), 0.0, law.maxExtra);
+    float gate = law.gateHalf > 0.0 ? 1.0 - smoothstep(law.P1 - law.gateHalf, law.P1 + law.gateHalf, u)
+                                    : (u < law.P1 ? 1.0 : 0.0);
+    if (gate <= 0.0) return 0.0;
+    return gate * (1.0 + clamp(floor(law.mu + law.sigma * g), 0.0, law.maxExtra));
 }
 
-float deliotGatedBinomial(float N, float p, float u, float g) {
+float deliotGatedBinomial(float N, float p, float u, float g, bool softGate) {
     float pc = clamp(p, 0.0, 1.0);
-    return deliotDrawBinomial(deliotBinomialLaw(N, p, deliotLogMiss(pc)), u, g);
+    return deliotDrawBinomial(deliotBinomialLaw(N, p, deliotLogMiss(pc), softGate), u, g);
 }
+float deliotGatedBinomial(float N, float p, float u, float g) { return deliotGatedBinomial(N, p, u, g, false); }

@@ -3,9 +3,12 @@
 //
 // D*^f(x, h) = D(h) [ (1/N) sum_{i in B(k)} R_i c_i g_a(T(h) - mu_i; Sigma_a) g_s(x_i - x; Sigma_s) + C(h) E[c] ]
 // (Eq. 5 and 11), with g normalised 2D Gaussians (the paper's N(.) is written with a 1D constant; the 2D one is
-// what makes the expectation over the surface equal D, Eq. 2), Sigma_a = D(h) (alpha* A*^-1)^2 (Algorithm 1
-// line 12, the Eq. 3 tip), Sigma_s = f^2 J J^T (line 11), points of the implicit 4D grid (Sec. 3.3.1) at two
+// what makes the expectation over the surface equal D, Eq. 2), Sigma_a = d (alpha* A*^-1)^2 (Algorithm 1
+// line 12), Sigma_s = f^2 J J^T (line 11), points of the implicit 4D grid (Sec. 3.3.1) at two
 // levels blended by the mollified roulette R of Eq. 8, and C the analytic compensation of Eq. 9-10.
+// Defaults follow the authors' published shader where the paper is vague (docs/kemppinen2025.md): d = pi D(h) in
+// Sigma_a (their Jacobian determinant; Algorithm 1 returns d / pi times the sum, i.e. D(h) times it, as here) and
+// their LOD, log2(f max|J_i| sqrt(N)) + 2^f. `angular_covariance=d` and `lod=cells` keep our earlier reading.
 #include "glints/kemppinen2025_core.glsl"
 
 // Per-glint colours: lighting.frag uses glintColorD (RGB NDF) instead of glintD when this is defined.
@@ -65,9 +68,13 @@ KemppinenProcess kemppinenProcess(vec2 uv, vec2 dx, vec2 dy, vec2 stretch, float
     float root = sqrt(diff * diff + b * b);
     float major = sqrt(mean + root), minor = sqrt(max(mean - root, 1e-30));
     anisotropy = major / minor;
-    // Sec. 3.3.2 / Algorithm 1 line 5: the level from the footprint size in grid units (isotropic choice on
-    // the major axis, so the spatial neighbourhood always holds the filter).
-    float lambda = clamp(log2(2.0 * KEMPPINEN_KAPPA * major * resolution), 0.0, KEMPPINEN_MAX_LEVEL);
+    // Sec. 3.3.2 / Algorithm 1 line 5 (QueryLod): the level from the footprint size in grid units. authors (their
+    // shader): log2(f max|J_i| sqrt(N)) + 2^f, about one level below `cells` at f = 0.7 (finer spatial cells,
+    // coarser angular ones: a smaller share of the NDF from the compensation). cells (our earlier reading):
+    // spatial cells of 3-6 filter deviations along the major axis, so the 2x2 neighbourhood holds the filter.
+    float lambda = P_LOD < 0.5 ? log2(P_FILTER_SIZE * max(length(jx), length(jy)) * resolution) + exp2(P_FILTER_SIZE)
+                               : log2(2.0 * KEMPPINEN_KAPPA * major * resolution);
+    lambda = clamp(lambda, 0.0, KEMPPINEN_MAX_LEVEL);
     p.level = int(floor(lambda));
     p.levelFrac = lambda - float(p.level);
     for (int i = 0; i < 2; ++i) {
@@ -100,7 +107,9 @@ GlintPixel glintSetup(GlintSurface s) {
     px.invDensity = 1.0 / density;
     float rough = sqrt(P_ROUGHNESS_ANISOTROPY);
     px.alpha = max(vec2(s.alpha * rough, s.alpha / rough), vec2(1e-4));
-    px.microRoughness = P_MICRO_ROUGHNESS;
+    // Sigma_a = d (alpha* A*^-1)^2: with d = pi D(h) (authors' code) the lobe is sqrt(pi) wider than with D(h).
+    // Folded into alpha* here so evaluation and sampling (kemppinen2025_sampling.glsl) share it.
+    px.microRoughness = P_MICRO_ROUGHNESS * (P_ANGULAR_COVARIANCE < 0.5 ? sqrt(PI) : 1.0);
     px.neighbourSide = P_NEIGHBORS > 0.5 ? 4 : 2;
     px.colorVariation = P_COLOR_VARIATION;
     bool triplanar = P_TRIPLANAR > 0.5;
@@ -212,7 +221,7 @@ vec3 kemppinenFilteredNdf(GlintPixel px, vec3 h, int ndf) {
     // reach 0 and the normalisations infinity, so stop here (NaN must never reach the framebuffer).
     if (d < 1e-20) return vec3(0.0);
     vec2 xa = kemppinenToPrior(h, px.alpha, ndf);                       // line 3
-    // Line 12: Sigma_a = d (alpha* A*^-1)^2. The angular grid lives in the inversely stretched angular space
+    // Line 12: Sigma_a = d (alpha* A*^-1)^2 (d's pi is in px.microRoughness). The angular grid lives in the inversely stretched angular space
     // x_a' = x_a / A*^-1 (Sec. 3.3.6, "inversely stretching the angular space"), where the lobe is isotropic
     // (sigma' = alpha* sqrt(d)) so the k nearest cells hold it in both directions; with A* = I it is x_a.
     // (Our reading: Algorithm 1 keeps an isotropic grid, whose 2x2 window cannot hold a 16:1 lobe.)

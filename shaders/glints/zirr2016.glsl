@@ -1,31 +1,34 @@
-// Baseline: Zirr & Kaplanyan 2016, "Real-time rendering of procedural multiscale materials" (I3D 2016), as
-// described by Deliot & Belcour 2023 Sec. 3 (Eq. 7) and Sec. 6.3 (Eq. 15). Interface: shaders/glints/README.md.
-//  - Random seeds live on axis-aligned mip grids on the surface (square texels of side 2^lod in UV).
-//  - Each texel holds N = density x texel area facets; its count of reflecting facets is a binomial draw
-//    b(N, p) with p = R D(h) / D(n) (the same counting NDF as Deliot & Belcour Eq. 4, so the two methods differ
-//    only in how they cover footprints and blend levels).
-//  - Anisotropic footprints are covered by stepping along the major axis over up to 16 texels (the usual cap):
-//    beyond ratio 16 the texel size grows isotropically (the stretched-glint artifact, D&B Fig. 11).
-//  - Levels of detail blend by lerping the normalized binomial outputs (D&B Eq. 7; the ghosting of Fig. 2, 10).
-//  - Binomial: Gaussian approximation when N p > 5, otherwise a sum of Bernoulli trials (up to 16; D&B Eq. 15).
-// Angular lifespan: the same bilinear hemispherical grid as our Deliot & Belcour implementation (cell of
-// projected area R / D(n)), so both methods' glints live equally long in angle (our choice for a fair comparison).
-// Deviation for N > 16 with N p <= 5: 16 trials of probability N p / 16 (keeps the mean; ZK16 clamps the trials).
+// Baseline: Zirr & Kaplanyan 2016, "Real-time rendering of procedural multiscale materials" (I3D 2016), as the
+// authors' own public shader runs it (facts measured against it, ../shared/methods.md; none of its code is used).
+// Interface: shaders/glints/README.md. CPU twin: engine/glints/zirr2016_reference.cpp (keep both in step).
+//  - Footprint: the axis-aligned box of the pixel's +-0.5 px parallelogram in UV (duv/dx, duv/dy).
+//  - Random seeds live on axis-aligned mip grids on the surface. The level puts the box's short side between
+//    1 and 2 cells (cells of 0.5-1 px); the long side is covered by up to 16 steps (beyond that the cells grow
+//    isotropically: the stretched glints of Deliot & Belcour Fig. 11), each step a 2x2 bilinear lookup of cells.
+//  - Each cell holds N = density x cell area facets; a facet reflects when its normal lies in the search cone of
+//    half-angle gamma around h: p = D(h) (h.n) pi gamma^2 (the fraction of normals in that solid angle). One
+//    angular cone per cell: the cone's seed is the cell of a hemispherical grid 2 gamma wide in projected h.
+//  - The count is b(N, p) drawn by inverse CDF from one uniform: the pmf recursion up to 16 steps while N p <= 5,
+//    else the Gaussian rounded, floor(N p + sigma Phi^-1(u) + 0.5) (A&S 26.2.23 for Phi^-1; rounding, not floor,
+//    keeps the mean: a floor would lose half a count, 10 % at N p = 5).
+//  - Levels of detail blend by lerping the two levels' normalized counts (their blend: the ghosting of D&B
+//    Fig. 2, 10, and the variance loss of D&B Fig. 4).
+//  - D_P = D(h) x (normalized count) / p, at most dynamic_range x D(h) (their dynamic-range clamp, 50000).
+// Not reproduced: their float hash keys (float(cx + 1549 cy) collapse at metre-scale UVs; an integer hash here) and
+// their per-cell random scaling of the facet count (`variation`, default 100), which raises the mean above the
+// smooth NDF; without it every parameter kept here preserves the mean (docs/zirr2016.md).
 
-const int ZIRR_MAX_ANISOTROPY = 16;
-const int ZIRR_MAX_TRIALS = 16;
+const int ZIRR_MAX_STEPS = 16;
+const int ZIRR_MAX_PMF_STEPS = 16;
 
 struct GlintPixel {
-    vec2 firstSample;      // UV of the first sample along the major axis
-    vec2 sampleStep;       // UV step between samples
-    int samples;           // texels covered along the major axis, 1..16
-    int lod0;              // lower mip level; the upper is lod0 + 1
-    float lodT;            // lerp weight of the upper level (fract of the continuous LOD)
-    float facetsLo;        // facets per texel at lod0 (density x 4^lod0 x density scale)
-    float Dn;              // D(n)
-    float angularCellSize; // projected-h cell of the angular grid
-    float footprintFacets; // density x footprint-equivalent area, for --aov extra
-    vec4 footprint;        // anisotropy ratio, LOD, samples, clamped (1 when ratio > 16)
+    vec2 firstStep;        // UV of the first step along the long side of the box
+    vec2 stepUv;           // UV between steps
+    int steps;             // 1..16
+    int lod0;              // finer level; the coarser is lod0 + 1
+    float lodT;            // lerp weight of the coarser level (fract of the continuous LOD)
+    float facetsLo;        // facets per cell at lod0 (density x 4^lod0 x density scale)
+    vec4 footprint;        // box ratio, LOD, steps, capped (1 when ratio > 16)
 };
 
 int g_zirrEvaluations = 0;
@@ -45,88 +48,102 @@ uvec3 zirrHash3(uvec3 v) {
 
 float zirrUnit(uint bits) { return (float(bits >> 8u) + 0.5) * (1.0 / 16777216.0); }
 
-// D&B Eq. 15: floor of a Gaussian N(Np, Np(1-p)) when N p > 5, else the sum of Bernoulli trials.
-float zirrBinomial(float N, float p, uvec3 seed) {
+// Phi^-1(u), Abramowitz & Stegun 26.2.23 (|error| < 4.5e-4).
+float zirrInverseNormal(float u) {
+    float q = min(u, 1.0 - u);
+    float t = sqrt(-2.0 * log(q));
+    float x = t - (2.515517 + t * (0.802853 + t * 0.010328)) / (1.0 + t * (1.432788 + t * (0.189269 + t * 0.001308)));
+    return u < 0.5 ? -x : x;
+}
+
+// b(N, p) by inverse CDF of one uniform u. N may be fractional (an expected facet count): N < 1 is one trial of
+// probability N p.
+float zirrBinomial(float N, float p, float u) {
     if (!(N > 0.0) || !(p > 0.0)) return 0.0;
     p = min(p, 1.0);
+    if (N < 1.0) return u < N * p ? 1.0 : 0.0;
+    if (p >= 1.0) return floor(N);
     float mean = N * p;
-    if (mean > 5.0) {
-        uvec3 r = zirrHash3(seed);
-        float g = sqrt(-2.0 * log(zirrUnit(r.x))) * cos(2.0 * PI * zirrUnit(r.y));
-        return clamp(floor(mean + sqrt(mean * (1.0 - p)) * g), 0.0, N);
+    if (mean > 5.0)
+        return clamp(floor(mean + sqrt(mean * (1.0 - p)) * zirrInverseNormal(u) + 0.5), 0.0, floor(N));
+    // P(0) = (1 - p)^N, with a series for log(1 - p) where float loses it; then pmf(k+1) = pmf(k) (N-k)/(k+1) p/(1-p).
+    float logMiss = p < 0.05 ? -p * (1.0 + p * (0.5 + p * (1.0 / 3.0 + p * 0.25))) : log(1.0 - p);
+    float pmf = exp(N * logMiss);
+    float cdf = pmf;
+    float odds = p / max(1.0 - p, 1e-30);
+    float k = 0.0;
+    for (int i = 0; i < ZIRR_MAX_PMF_STEPS && u >= cdf && k < N; ++i) {
+        pmf *= (N - k) / (k + 1.0) * odds;
+        k += 1.0;
+        cdf += pmf;
     }
-    bool few = N <= float(ZIRR_MAX_TRIALS);
-    int trials = few ? int(ceil(N)) : ZIRR_MAX_TRIALS;
-    float pTrial = few ? p : mean / float(ZIRR_MAX_TRIALS);
-    float count = 0.0;
-    uvec3 state = seed;
-    for (int i = 0; i < trials; ++i) {
-        state = zirrHash3(state + uvec3(uint(i), 0u, 0u));
-        float q = few ? pTrial * min(1.0, N - float(i)) : pTrial;   // the last trial of a fractional N is partial
-        count += zirrUnit(state.x) < q ? 1.0 : 0.0;
-    }
-    return count;
+    return min(k, floor(N));
 }
 
 GlintPixel glintSetup(GlintSurface s) {
     GlintPixel px;
-    FootprintEllipse e = footprintEllipse(s.duvdx, s.duvdy);
-    float major = max(e.major, 1e-20);
-    float minor = max(e.minor, major * 1e-6);
-    float ratio = major / minor;
-    px.samples = clamp(int(ceil(ratio)), 1, ZIRR_MAX_ANISOTROPY);
-    // Beyond the cap the texels grow isotropically until 16 of them cover the major axis.
-    float coveredMinor = max(minor, major / float(ZIRR_MAX_ANISOTROPY));
-    float lod = clamp(log2(coveredMinor * P_SCREEN_SPACE_SCALE), -100.0, 100.0);
+    // Axis-aligned box of the +-0.5 px parallelogram: full extents along u and v.
+    vec2 extent = abs(s.duvdx) + abs(s.duvdy);
+    float longSide = max(max(extent.x, extent.y), 1e-20);
+    float shortSide = max(min(extent.x, extent.y), longSide * 1e-6);
+    float ratio = longSide / shortSide;
+    px.steps = clamp(int(ceil(ratio)), 1, ZIRR_MAX_STEPS);
+    float covered = max(shortSide, longSide / float(ZIRR_MAX_STEPS));
+    float lod = clamp(log2(covered), -100.0, 100.0);   // cell 2^floor(lod): 0.5-1 x the covered short side
     px.lod0 = int(floor(lod));
     px.lodT = lod - floor(lod);
     float density = exp(clamp(P_LOG_DENSITY, 0.0, 50.0)) * max(s.densityScale, 0.0);
     px.facetsLo = density * exp2(2.0 * float(px.lod0));
-    px.sampleStep = e.majorDir * (2.0 * major / float(px.samples));
-    px.firstSample = s.uv - e.majorDir * major + 0.5 * px.sampleStep;
-    px.Dn = D_smooth(vec3(0.0, 0.0, 1.0), s.alpha, s.ndf);
-    px.angularCellSize = sqrt(P_MICROFACET_ROUGHNESS / max(px.Dn, 1e-20));
-    px.footprintFacets = density * exp2(2.0 * lod) * float(px.samples);
-    px.footprint = vec4(ratio, lod, float(px.samples), ratio > float(ZIRR_MAX_ANISOTROPY) ? 1.0 : 0.0);
+    vec2 dir = extent.x >= extent.y ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
+    px.stepUv = dir * (longSide / float(px.steps));
+    px.firstStep = s.uv - dir * (0.5 * longSide) + 0.5 * px.stepUv;
+    px.footprint = vec4(ratio, lod, float(px.steps), ratio > float(ZIRR_MAX_STEPS) ? 1.0 : 0.0);
     return px;
 }
 
 float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     g_zirrLightCalls += 1;
-    float R = P_MICROFACET_ROUGHNESS;
-    float p = clamp(R * D_smooth(h, s.alpha, s.ndf) / max(px.Dn, 1e-30), 0.0, 1.0);
-    vec2 q = h.xy / px.angularCellSize - 0.5;
-    vec2 qBase = floor(q);
-    vec2 f = q - qBase;
-    ivec2 a0 = ivec2(qBase);
-    float angularWeight[4] = float[4]((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    if (h.z <= 0.0 || !(px.facetsLo > 0.0)) return 0.0;
+    float D = D_smooth(h, s.alpha, s.ndf);
+    float gamma = P_SEARCH_CONE;
+    float p = clamp(D * h.z * PI * gamma * gamma, 0.0, 1.0);
+    if (!(p > 0.0)) return 0.0;
+    ivec2 cone = ivec2(floor(h.xy / (2.0 * gamma)));   // one angular cone per cell
     float level[2] = float[2](0.0, 0.0);
     for (int l = 0; l < 2; ++l) {
         int lod = px.lod0 + l;
         float facets = px.facetsLo * (l == 0 ? 1.0 : 4.0);
         float invSize = exp2(-float(lod));
-        for (int j = 0; j < px.samples; ++j) {
-            ivec2 texel = ivec2(floor((px.firstSample + float(j) * px.sampleStep) * invSize));
+        uint levelSeed = zirrHash3(uvec3(uint(lod + 4096), uint(cone.x), uint(cone.y))).x;
+        for (int j = 0; j < px.steps; ++j) {
+            // 2x2 bilinear coverage around the step's point (cell centres at integer + 0.5).
+            vec2 q = (px.firstStep + float(j) * px.stepUv) * invSize - 0.5;
+            vec2 base = floor(q);
+            vec2 f = q - base;
+            ivec2 c0 = ivec2(base);
             for (int a = 0; a < 4; ++a) {
-                ivec2 cell = a0 + ivec2(a & 1, a >> 1);
-                uvec3 seed = uvec3(uint(texel.x), uint(texel.y),
-                                   zirrHash3(uvec3(uint(lod + 4096), uint(cell.x), uint(cell.y))).x);
-                level[l] += angularWeight[a] * zirrBinomial(facets, p, seed);
+                ivec2 o = ivec2(a & 1, a >> 1);
+                float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+                ivec2 cell = c0 + o;
+                float u = zirrUnit(zirrHash3(uvec3(uint(cell.x), uint(cell.y), levelSeed)).x);
+                level[l] += w * zirrBinomial(facets, p, u);
             }
             g_zirrEvaluations += 4;
         }
-        level[l] /= max(facets * float(px.samples), 1e-30);
+        level[l] /= facets * float(px.steps);
     }
-    // D&B Eq. 7: lerp of the two levels' normalized counts (ZK16's blend), then Eq. 4's D(n)/R.
-    return px.facetsLo > 0.0 ? px.Dn / R * mix(level[0], level[1], px.lodT) : 0.0;
+    // ZK16's lerp of the levels' normalized counts; E[count / N] = p, so D x (count / N) / p has mean D.
+    float ratioToMean = mix(level[0], level[1], px.lodT) / p;
+    return D * min(ratioToMean, P_DYNAMIC_RANGE);
 }
 
 vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }
 
-// x: binomial evaluations per glintD call (2 levels x samples x 4 angular cells: varies with the footprint),
-// y: total, z: glintD calls, w: 1 / facets in the footprint (density x texel area x samples).
+// x: binomial draws per glintD call (2 levels x steps x 4 cells: varies with the footprint), y: total,
+// z: glintD calls, w: 1 / facets of the footprint (steps x lerped cell facets).
 vec4 glintExtraAOV(GlintPixel px, GlintSurface s) {
     float perCall = g_zirrLightCalls > 0 ? float(g_zirrEvaluations) / float(g_zirrLightCalls) : 0.0;
+    float footprintFacets = px.facetsLo * mix(1.0, 4.0, px.lodT) * float(px.steps);
     return vec4(perCall, float(g_zirrEvaluations), float(g_zirrLightCalls),
-                px.footprintFacets > 0.0 ? 1.0 / px.footprintFacets : 0.0);
+                footprintFacets > 0.0 ? 1.0 / footprintFacets : 0.0);
 }
