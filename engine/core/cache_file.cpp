@@ -165,6 +165,20 @@ std::optional<std::string> CacheDir::load(const std::string& name, const CacheKe
     return payload;
 }
 
+std::optional<CacheKey> readCacheKey(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    HeaderReader header(in);
+    char magic[sizeof kMagic];
+    if (!header.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) return std::nullopt;
+    header.number(4);
+    CacheKey key;
+    key.layoutVersion = uint32_t(header.number(4));
+    key.kind = header.text();
+    key.parameters = header.text();
+    if (!header.ok()) return std::nullopt;
+    return key;
+}
+
 void CacheDir::removeOrphanedTemporaries(const std::string& name) const {
     // AtomicFile names its temporary ".<stem>.tmp-<pid>-<n><ext>": remove those whose writer is gone.
     const std::string stem = std::filesystem::path(name).stem().string();

@@ -67,5 +67,7 @@ private:
 
 // The serialized form (header + payload), exposed for tests and tools.
 std::string encodeCacheFile(const CacheKey& key, std::string_view payload);
+// The key a cache file was stored under (no payload checks), or nullopt when its header is unreadable.
+std::optional<CacheKey> readCacheKey(const std::filesystem::path& file);
 
 }  // namespace glimmer::cache

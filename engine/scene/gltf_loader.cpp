@@ -789,7 +789,7 @@ std::vector<unsigned char> readModelFile(const std::filesystem::path& path, bool
         while (at < got && std::isspace(head[at])) ++at;
         if (got > 0 && at < got && head[at] != '{') throw Error(file + ": not a JSON glTF (does not start with '{')");
     }
-    std::vector<unsigned char> bytes(size_t(size));
+    std::vector<unsigned char> bytes(static_cast<size_t>(size));
     in.seekg(0);
     if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) throw Error(file + ": read error");
     return bytes;

@@ -317,12 +317,17 @@ Scene loadSceneFile(const std::filesystem::path& path) {
         throw Error(path.string() + ": scene file larger than the limit of " + std::to_string(kMaxSceneFileBytes) + " bytes");
     Reader r(path);
     Json doc;
+    std::string lastKey;  // the key being read when parsing fails, to name the field
     try {
-        doc = Json::parse(readTextFile(path));
+        doc = Json::parse(readTextFile(path), [&](int, Json::parse_event_t event, Json& parsed) {
+            if (event == Json::parse_event_t::key && parsed.is_string()) lastKey = parsed.get<std::string>();
+            return true;
+        });
     } catch (const Json::exception& e) {
         // parse_error, and out_of_range for numbers such as 1e309 that overflow a double.
         std::string what = e.what();
-        throw Error(path.string() + ": invalid JSON (" + what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
+        throw Error(path.string() + ": invalid JSON" + (lastKey.empty() ? "" : " at key '" + lastKey + "'") + " (" +
+                    what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
     }
     r.checkKeys(doc, "scene", {"name", "base", "sky", "environment", "meshes", "models", "materials", "instances",
                                "lights", "cameras", "walkthrough", "description"});
