@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -220,6 +221,33 @@ TEST(BadInput, FailedWritesExitNonZeroAndLeaveNothingHalfWritten) {
     EXPECT_EQ(shot.exitCode, 1) << shot.err;
     EXPECT_NE(shot.err.find("--screenshot"), std::string::npos) << shot.err;
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+}  // namespace
+
+namespace {
+
+// fuzz-hang-100226 (issue 14), rebuilt from generated content: a textured material with uvScale [65538, 2] made
+// llvmpipe's uncapped anisotropic filter scan millions of texels per pixel (minutes per frame). The G-buffer
+// now reads such footprints from a coarse level (shaders/gbuffer.frag): the render finishes in seconds.
+TEST(BadInput, HugeUvScaleRendersInBoundedTime) {
+    std::string dir = glimmer::test::makeTempDir("huge-uv-scale");
+    std::vector<uint8_t> texture(64 * 64 * 4);
+    for (size_t i = 0; i < texture.size(); ++i) texture[i] = uint8_t((i * 37) ^ (i >> 7));
+    glimmer::writePng(dir + "/noise.png", texture.data(), 64, 64);
+    std::ofstream(dir + "/scene.json") << R"({"meshes":[{"name":"g","generator":"plane","halfExtent":2,"cells":4},
+        {"name":"s","generator":"sphere","radius":0.3,"segments":16,"rings":8}],
+      "materials":[{"name":"m","baseColorTexture":"noise.png","normalTexture":"noise.png","uvScale":[65538,2],
+        "uvRotationDegrees":30,"alphaCutoff":0.5}],
+      "instances":[{"mesh":"g","material":"m"},{"mesh":"s","material":"m","translation":[0,0.3,0]}],
+      "cameras":[{"name":"c","position":[0,2,4],"target":[0,0,0]}]})";
+    auto start = std::chrono::steady_clock::now();
+    glimmer::test::ProcessResult r = runGlimmer({"render", "--scene", dir + "/scene.json", "--size", "96x96", "--out", dir + "/out.exr"});
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_LT(seconds, 60.0) << "before the fix this took minutes";
+    glimmer::ImageF image = glimmer::readImage(dir + "/out.exr");
+    for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
 }  // namespace

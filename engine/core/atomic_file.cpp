@@ -29,8 +29,12 @@ void checkOutputPath(const std::filesystem::path& path, const std::string& flag)
     std::filesystem::file_status status = std::filesystem::status(absolute, ec);
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
         throw Error(prefix(flag, path) + "exists and is not a regular file (a FIFO, device or folder is not replaced)");
-    if (access(parent.c_str(), W_OK) != 0)
-        throw Error(prefix(flag, path) + "cannot write in " + parent.string() + " (" + std::strerror(errno) + ")");
+    // Create (and remove) a probe file: access() says yes to root everywhere, even in /proc.
+    std::filesystem::path probe = parent / (".glimmer-probe-" + std::to_string(getpid()));
+    int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) throw Error(prefix(flag, path) + "cannot write in " + parent.string() + " (" + std::strerror(errno) + ")");
+    ::close(fd);
+    ::unlink(probe.c_str());
 }
 
 AtomicFile::AtomicFile(std::filesystem::path target, std::string flag) : target_(std::move(target)), flag_(std::move(flag)) {
