@@ -117,6 +117,9 @@ TEST(HostileInput, SizesAreCheckedBeforeAllocation) {
     expectGltfError("hang-node-dag-2pow26.gltf", {"nodes", std::to_string(glimmer::kMaxInstances)});
     for (const char* hdr : {"mem-env-20000x20000-header.hdr", "exit3-env-60000x60000-header.hdr"})
         expectCleanError(hdr, [&] { glimmer::readImage(kData / hdr, glimmer::ImageUse::Environment); }, hdr, {"header size"});
+    // Found by fuzz_environment: an 808-byte EXR whose attribute claims 1.6 GB (70 s and 1.6 GB in OpenEXR).
+    expectCleanError("EXR attribute", [&] { glimmer::readImage(kData / "fuzz-exr-attribute-1.6gb.exr", glimmer::ImageUse::Environment); },
+                     "fuzz-exr-attribute-1.6gb.exr", {"attribute", "more than the file holds"}, 2.0);
     // Memory stays bounded: before the fix these allocated 4.8 to 11.6 GB.
     EXPECT_LT(maxRssMb() - before, 1024) << "peak memory grew by " << maxRssMb() - before << " MB";
 }
