@@ -1,6 +1,12 @@
 // Bad input: a one-line error naming the culprit, a non-zero exit, no crash, no output file.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -133,6 +139,116 @@ TEST(RenderCommand, WritesPngAndExrAndPrintsStats) {
     EXPECT_GT(peak, 1.0f);
     glimmer::ImageF pngImage = glimmer::readImage(dir + "/a.png");
     EXPECT_EQ(pngImage.width, 64);
+}
+
+}  // namespace
+
+namespace {
+
+const std::string kHostile = std::string(GLIMMER_TEST_DIR) + "/data/hostile/";
+
+// stderr lines that are not warnings: a hostile file gives exactly one, the last.
+std::vector<std::string> errorLines(const std::string& err) {
+    std::vector<std::string> lines;
+    size_t start = 0;
+    for (size_t end; (end = err.find('\n', start)) != std::string::npos; start = end + 1) {
+        std::string line = err.substr(start, end - start);
+        if (line.rfind("glimmer: warning:", 0) != 0) lines.push_back(line);
+    }
+    if (start < err.size()) lines.push_back(err.substr(start));
+    return lines;
+}
+
+TEST(BadInput, HostileFilesOfIssue14FailCleanlyInBoundedTime) {
+    std::string dir = glimmer::test::makeTempDir("hostile-cli");
+    std::string out = dir + "/out.png";
+    struct Case { std::string file, field; };
+    const std::vector<Case> cases = {
+        {"crash-bufferview-offset-wrap.gltf", "byteOffset"}, {"oob-read-accessor-offset-wrap.gltf", "byteOffset"},
+        {"oob-read-bufferview-offset-wrap.gltf", "byteOffset"}, {"overread-index-count-2.gltf", "no mesh to render"},
+        {"mem-accessor-count-1e9.gltf", "count"}, {"hang-node-dag-2pow26.gltf", "nodes"},
+        {"blank-huge-positions.gltf", "POSITION"}, {"json/inf_num.json", "halfExtent"},
+        {"json/light_color_neg.json", "lights[0].color"}, {"json/basecolor_neg.json", "materials[0].baseColor"},
+        {"json/cam_huge.json", "cameras[0].position"}, {"json/cells_u64.json", "meshes[0].cells"},
+    };
+    for (const Case& c : cases) {
+        auto start = std::chrono::steady_clock::now();
+        glimmer::test::ProcessResult r = runGlimmer({"render", "--scene", kHostile + c.file, "--size", "32x32", "--out", out});
+        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_TRUE(r.exitCode == 1 || r.exitCode == 2) << c.file << ": exit " << r.exitCode << " signal " << r.signal << "\n" << r.err;
+        std::vector<std::string> errors = errorLines(r.err);
+        ASSERT_EQ(errors.size(), 1u) << c.file << ":\n" << r.err;
+        EXPECT_NE(errors[0].find(std::filesystem::path(c.file).filename().string()), std::string::npos) << errors[0];
+        EXPECT_NE(errors[0].find(c.field), std::string::npos) << c.file << ": '" << c.field << "' not in " << errors[0];
+        EXPECT_LT(seconds, 30.0) << c.file;
+    }
+    for (const char* hdr : {"mem-env-20000x20000-header.hdr", "exit3-env-60000x60000-header.hdr"}) {
+        glimmer::test::ProcessResult r = runGlimmer({"render", "--env", kHostile + hdr, "--size", "32x32", "--out", out});
+        EXPECT_EQ(r.exitCode, 1) << hdr << "\n" << r.err;
+        ASSERT_EQ(errorLines(r.err).size(), 1u) << r.err;
+        EXPECT_NE(r.err.find(hdr), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("header size"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out));
+    glimmer::test::ProcessResult ok = runGlimmer({"render", "--scene", kHostile + "ok-baseline.gltf", "--size", "32x32", "--out", out});
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+TEST(BadInput, FailedWritesExitNonZeroAndLeaveNothingHalfWritten) {
+    std::string dir = glimmer::test::makeTempDir("failed-writes");
+    std::string fifo = dir + "/pipe.png";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& target : {fifo, std::string("/dev/full")}) {
+        glimmer::test::ProcessResult r = runGlimmer({"render", "--scene", "sphere", "--size", "32x32", "--out", target});
+        // 1 (not a regular file) for the FIFO, which must not block; 2 for /dev/full (no image extension).
+        EXPECT_TRUE(r.exitCode == 1 || r.exitCode == 2) << target << ": " << r.err;
+        EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+    }
+    // A full disk, simulated by a file size limit: the old image stays, no temporary file remains.
+    std::string out = dir + "/image.png";
+    std::ofstream(out) << "previous";
+    std::string command = "ulimit -f 2; trap '' XFSZ; exec '" + std::string(GLIMMER_EXECUTABLE) +
+                          "' render --scene sphere --size 256x256 --out '" + out + "' >'" + dir + "/log' 2>&1";
+    int status = std::system(("bash -c \"" + command + "\"").c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << glimmer::readTextFile(dir + "/log");
+    EXPECT_EQ(glimmer::readTextFile(out), "previous");
+    size_t files = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+    EXPECT_EQ(files, 3u) << "pipe, image and log only";
+    // --screenshot into a missing folder fails before anything is rendered (no window needed to see it).
+    auto start = std::chrono::steady_clock::now();
+    glimmer::test::ProcessResult shot = runGlimmer({"view", "--frames", "1", "--screenshot", dir + "/missing/shot.png"});
+    EXPECT_EQ(shot.exitCode, 1) << shot.err;
+    EXPECT_NE(shot.err.find("--screenshot"), std::string::npos) << shot.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+}  // namespace
+
+namespace {
+
+// fuzz-hang-100226 (issue 14), rebuilt from generated content: a textured material with uvScale [65538, 2] made
+// llvmpipe's uncapped anisotropic filter scan millions of texels per pixel (minutes per frame). The G-buffer
+// now reads such footprints from a coarse level (shaders/gbuffer.frag): the render finishes in seconds.
+TEST(BadInput, HugeUvScaleRendersInBoundedTime) {
+    std::string dir = glimmer::test::makeTempDir("huge-uv-scale");
+    std::vector<uint8_t> texture(64 * 64 * 4);
+    for (size_t i = 0; i < texture.size(); ++i) texture[i] = uint8_t((i * 37) ^ (i >> 7));
+    glimmer::writePng(dir + "/noise.png", texture.data(), 64, 64);
+    std::ofstream(dir + "/scene.json") << R"({"meshes":[{"name":"g","generator":"plane","halfExtent":2,"cells":4},
+        {"name":"s","generator":"sphere","radius":0.3,"segments":16,"rings":8}],
+      "materials":[{"name":"m","baseColorTexture":"noise.png","normalTexture":"noise.png","uvScale":[65538,2],
+        "uvRotationDegrees":30,"alphaCutoff":0.5}],
+      "instances":[{"mesh":"g","material":"m"},{"mesh":"s","material":"m","translation":[0,0.3,0]}],
+      "cameras":[{"name":"c","position":[0,2,4],"target":[0,0,0]}]})";
+    auto start = std::chrono::steady_clock::now();
+    glimmer::test::ProcessResult r = runGlimmer({"render", "--scene", dir + "/scene.json", "--size", "96x96", "--out", dir + "/out.exr"});
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_LT(seconds, 60.0) << "before the fix this took minutes";
+    glimmer::ImageF image = glimmer::readImage(dir + "/out.exr");
+    for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "bench/bench.h"
 #include "bench/temporal.h"
 #include "core/cli.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace glimmer {
@@ -47,18 +48,12 @@ static bool given(const std::vector<std::string>& args, const std::string& flag)
 
 // Fails before the (long) run when an output cannot be written.
 static void checkWritable(const std::optional<std::string>& path, const char* flag) {
-    if (!path) return;
-    std::error_code ec;
-    std::filesystem::path parent = std::filesystem::absolute(*path, ec).parent_path();
-    if (!std::filesystem::is_directory(parent))
-        throw Error(std::string(flag) + ": " + *path + ": directory " + parent.string() + " does not exist");
+    if (path) checkOutputPath(*path, flag);
 }
 
+// Atomic (core/atomic_file.h): a failed write leaves no partial report and keeps an existing one.
 static void writeText(const std::optional<std::string>& path, const char* flag, const std::string& text) {
-    if (!path) return;
-    std::ofstream out(*path);
-    out << text;
-    if (!out) throw Error(std::string(flag) + ": " + *path + ": cannot write");
+    if (path) writeFileAtomically(*path, text, flag);
 }
 
 int runBenchCommand(const std::vector<std::string>& argList) {

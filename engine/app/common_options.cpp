@@ -8,11 +8,14 @@
 #include "render/environment.h"
 #include "ibl/ibl_modes.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
 
 namespace glimmer {
 
 RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene) {
     RenderRequest request;
+    // Before the scene is read: glTF URIs that leave the model's folder are refused unless this is given.
+    if (args.flag("--allow-outside-uris")) setAllowOutsideUris(true);
     request.scene = args.valueOr("--scene", defaultScene);
     request.camera = args.valueOr("--camera", "");
     request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));

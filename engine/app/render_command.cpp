@@ -8,6 +8,7 @@
 #include "app/common_options.h"
 #include "bench/compare.h"
 #include "core/cli.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
@@ -21,7 +22,7 @@ static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
     "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
     "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
-    "                      --out FILE.png|FILE.exr\n"
+    "                      [--allow-outside-uris] --out FILE.png|FILE.exr\n"
     "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
@@ -62,18 +63,8 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     if (!out) throw UsageError("render: --out FILE.png|FILE.exr is required");
     std::filesystem::path outPath(*out);
     ImageFormat format = imageFormatForPath(outPath, "--out");
-    // Fail on an unwritable destination before spending time on the render.
-    {
-        std::error_code ec;
-        std::filesystem::path parent = std::filesystem::absolute(outPath, ec).parent_path();
-        if (!std::filesystem::is_directory(parent))
-            throw Error("--out: " + outPath.string() + ": directory " + parent.string() + " does not exist");
-        bool existed = std::filesystem::exists(outPath);
-        std::ofstream probe(outPath, std::ios::app);
-        if (!probe) throw Error("--out: " + outPath.string() + ": cannot write");
-        probe.close();
-        if (!existed) std::filesystem::remove(outPath, ec);  // a failed render must not leave an empty file
-    }
+    // Fail on an unwritable destination before spending time on the render (the write itself is atomic).
+    checkOutputPath(outPath, "--out");
 
     if (compare) {
         if (format != ImageFormat::Png) throw UsageError("--compare: --out must be a .png file");

@@ -7,6 +7,7 @@
 #include "app/common_options.h"
 #include "app/walkthrough.h"
 #include "core/cli.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
@@ -46,7 +47,10 @@ int runViewCommand(const std::vector<std::string>& argList) {
         if (!options.splitMethod) throw UsageError("--split-at: only with --split METHOD");
     }
     args.finish();
-    if (options.screenshot) imageFormatForPath(*options.screenshot, "--screenshot");
+    if (options.screenshot) {
+        imageFormatForPath(*options.screenshot, "--screenshot");
+        checkOutputPath(*options.screenshot, "--screenshot");  // before the window opens and renders
+    }
     if (options.screenshot && options.frameLimit == 0)
         throw UsageError("--screenshot needs --frames N (interactive screenshots: F12)");
     return runWalkthroughWindow(options);

@@ -4,9 +4,11 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
+#include <optional>
 #include <thread>
 
+#include "core/cache_file.h"
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -15,7 +17,7 @@ namespace glimmer::wang2020 {
 
 namespace {
 
-constexpr uint32_t kCacheVersion = 1;
+constexpr uint32_t kCacheVersion = 2;  // 2: core/cache_file.h container
 
 int threadCount(int requested) {
     if (requested > 0) return requested;
@@ -65,31 +67,46 @@ float coneIntegral(glm::vec3 axis, float gamma, int rings, F f) {
     return float(sum);
 }
 
+// Cache I/O through core/cache_file.h: the header carries the resolution, alpha and base gamma, a checksum
+// covers the payload, and the values are checked (a DPF table holds finite values in [0, 1], Sec. 4.4 and the
+// clamp in generateDpf) before they are trusted.
 std::string cacheFileName(float alpha, DpfResolution res) {
     char name[96];
-    std::snprintf(name, sizeof name, "wang2020_dpf_v%u_a%.3f_%dx%dx%d.bin", kCacheVersion, alpha, res.thetaI,
-                  res.thetaO, res.phi);
+    std::snprintf(name, sizeof name, "wang2020_dpf_a%.3f_%dx%dx%d.bin", alpha, res.thetaI, res.thetaO, res.phi);
     return name;
 }
 
-bool readTable(const std::filesystem::path& file, DpfTable& table) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
-    table.values.resize(table.res.size());
-    in.read(reinterpret_cast<char*>(table.values.data()), std::streamsize(table.values.size() * sizeof(float)));
-    return bool(in) && in.peek() == std::char_traits<char>::eof();
+cache::CacheKey cacheKey(float alpha, DpfResolution res) {
+    char parameters[128];
+    std::snprintf(parameters, sizeof parameters, "alpha=%.6f thetaI=%d thetaO=%d phi=%d gamma=%.6f rings=4", alpha,
+                  res.thetaI, res.thetaO, res.phi, kBaseGamma);
+    return {"wang2020-dpf", kCacheVersion, parameters};
 }
 
-void writeTable(const std::filesystem::path& file, const DpfTable& table) {
-    std::filesystem::path tmp = file;
-    tmp += ".tmp" + std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw Error("wang2020: cannot write DPF cache file " + tmp.string());
-        out.write(reinterpret_cast<const char*>(table.values.data()),
-                  std::streamsize(table.values.size() * sizeof(float)));
+// A table of zeros passes the range check but has no glints at all: never a real DPF, so it is rejected too.
+bool validDpfValues(std::string_view bytes) {
+    bool anyPositive = false;
+    for (size_t at = 0; at + sizeof(float) <= bytes.size(); at += sizeof(float)) {
+        float v;
+        std::memcpy(&v, bytes.data() + at, sizeof v);
+        if (!(v >= 0.0f && v <= 1.0f)) return false;  // also rejects NaN
+        anyPositive |= v > 0.0f;
     }
-    std::filesystem::rename(tmp, file);  // atomic: a concurrent reader never sees half a table
+    return anyPositive;
+}
+
+bool readTable(const cache::CacheDir& dir, float alpha, DpfTable& table) {
+    std::optional<std::string> bytes = dir.load(cacheFileName(alpha, table.res), cacheKey(alpha, table.res),
+                                                table.res.size() * sizeof(float), validDpfValues);
+    if (!bytes) return false;
+    table.values.resize(table.res.size());
+    std::memcpy(table.values.data(), bytes->data(), bytes->size());
+    return true;
+}
+
+bool writeTable(const cache::CacheDir& dir, float alpha, const DpfTable& table) {
+    return dir.store(cacheFileName(alpha, table.res), cacheKey(alpha, table.res),
+                     std::string_view(reinterpret_cast<const char*>(table.values.data()), table.values.size() * sizeof(float)));
 }
 
 }  // namespace
@@ -175,27 +192,26 @@ DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cach
     DpfSet set;
     set.fromCache = true;
     Stopwatch clock;
-    std::error_code ec;
-    std::filesystem::create_directories(cacheDir, ec);
+    cache::CacheDir dir(cacheDir);
+    bool stored = true;
     for (size_t k = 0; k < kRoughnessSamples.size(); ++k) {
         float alpha = kRoughnessSamples[k];
-        std::filesystem::path file = cacheDir / cacheFileName(alpha, res);
         DpfTable table;
         table.res = res;
-        if (!readTable(file, table)) {
+        if (!readTable(dir, alpha, table)) {
             set.fromCache = false;
             Stopwatch one;
             table = generateDpf(alpha, res, threads);
             log::info("wang2020: DPF generation ", k + 1, "/", kRoughnessSamples.size(), " (alpha ", alpha, ", ",
                       res.thetaI, "x", res.thetaO, "x", res.phi, ") in ", one.elapsedMs(), " ms");
-            if (!ec) writeTable(file, table);
+            stored = writeTable(dir, alpha, table) && stored;
         }
         set.tables.push_back(std::move(table));
     }
     if (!set.fromCache) {
         set.generationMs = clock.elapsedMs();
         log::info("wang2020: DPF tables generated in ", set.generationMs, " ms with ", threadCount(threads),
-                  " threads, cached in ", cacheDir.string());
+                  " threads", stored ? ", cached in " + cacheDir.string() : std::string(", not cached"));
     }
     return set;
 }

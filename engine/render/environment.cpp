@@ -202,7 +202,7 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
     Stopwatch clock;
     gl::Texture equirect;
     if (spec.kind == EnvironmentSpec::Kind::File) {
-        ImageF image = readImage(spec.path);
+        ImageF image = readImage(spec.path, ImageUse::Environment);
         if (image.width < 2 || image.height < 2 || image.channels < 1)
             throw Error(spec.path.string() + ": not an environment image (" + std::to_string(image.width) + "x" +
                         std::to_string(image.height) + ", " + std::to_string(image.channels) + " channels)");

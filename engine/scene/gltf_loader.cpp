@@ -7,15 +7,19 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/log.h"
+#include "scene/scene_limits.h"
 #include "scene/uv_transform.h"
 
 namespace glimmer {
@@ -93,6 +97,18 @@ uint32_t readIndex(const unsigned char* p, int componentType) {
     }
 }
 
+// offset + (count - 1) * stride + elementSize <= size, in 64-bit arithmetic that cannot wrap: offsets near 2^64
+// in a hostile file must fail the check, not pass it modulo 2^64. count == 0 needs only offset <= size.
+bool rangeFits(uint64_t offset, uint64_t count, uint64_t stride, uint64_t elementSize, uint64_t size) {
+    if (offset > size) return false;
+    if (count == 0) return true;
+    uint64_t span = 0, end = 0;
+    if (__builtin_mul_overflow(count - 1, stride, &span) || __builtin_add_overflow(span, elementSize, &span) ||
+        __builtin_add_overflow(offset, span, &end))
+        return false;
+    return end <= size;
+}
+
 // The bytes a buffer view exposes, after checking that the view lies inside its (loaded) buffer.
 struct ViewBytes {
     const unsigned char* data = nullptr;
@@ -102,9 +118,10 @@ struct ViewBytes {
 ViewBytes viewBytes(const tinygltf::Model& model, int viewIndex, const std::string& file) {
     const tinygltf::BufferView& view = element(model.bufferViews, viewIndex, "bufferView", file);
     const tinygltf::Buffer& buffer = element(model.buffers, view.buffer, "buffer", file);
-    if (view.byteOffset + view.byteLength > buffer.data.size())
+    if (!rangeFits(view.byteOffset, 1, 0, view.byteLength, buffer.data.size()))
         throw Error(file + ": bufferView " + std::to_string(viewIndex) + " reads past the end of buffer " +
-                    std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes loaded)");
+                    std::to_string(view.buffer) + " (byteOffset " + std::to_string(view.byteOffset) + " + byteLength " +
+                    std::to_string(view.byteLength) + " > " + std::to_string(buffer.data.size()) + " bytes loaded)");
     return {buffer.data.data() + view.byteOffset, view.byteLength, view.byteStride};
 }
 
@@ -118,24 +135,37 @@ std::vector<glm::vec<N, float>> readFloatAccessor(const tinygltf::Model& model, 
     int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
     if (components < N || componentSize <= 0) throw Error(file + ": " + name + " has the wrong type");
     size_t elementSize = size_t(components * componentSize);
+    // Every size is checked against the bytes that hold it before anything is allocated.
+    uint64_t limit = accessor.bufferView >= 0 ? kMaxAccessorElements : kMaxZeroAccessorElements;
+    if (accessor.count > limit)
+        throw Error(file + ": " + name + ": count " + std::to_string(accessor.count) + " exceeds the limit " + std::to_string(limit));
+    ViewBytes bytes;
+    size_t stride = elementSize;
+    if (accessor.bufferView >= 0) {
+        bytes = viewBytes(model, accessor.bufferView, file);
+        stride = bytes.stride ? bytes.stride : elementSize;
+        if (!rangeFits(accessor.byteOffset, accessor.count, stride, elementSize, bytes.size))
+            throw Error(file + ": " + name + ": byteOffset " + std::to_string(accessor.byteOffset) + " and count " +
+                        std::to_string(accessor.count) + " read past its bufferView (" + std::to_string(bytes.size) + " bytes)");
+    }
     std::vector<Vec> out(accessor.count, Vec(0.0f));
     if (accessor.bufferView >= 0) {
-        ViewBytes bytes = viewBytes(model, accessor.bufferView, file);
-        size_t stride = bytes.stride ? bytes.stride : elementSize;
-        if (accessor.count > 0 && accessor.byteOffset + stride * (accessor.count - 1) + elementSize > bytes.size)
-            throw Error(file + ": " + name + " reads past its bufferView");
         for (size_t i = 0; i < accessor.count; ++i) {
             const unsigned char* p = bytes.data + accessor.byteOffset + i * stride;
             for (int c = 0; c < N; ++c) out[i][c] = readComponent(p + c * componentSize, accessor.componentType, accessor.normalized);
         }
     }
     if (accessor.sparse.isSparse) {
-        size_t count = size_t(std::max(accessor.sparse.count, 0));
+        if (accessor.sparse.count < 0 || uint64_t(accessor.sparse.count) > accessor.count ||
+            accessor.sparse.indices.byteOffset < 0 || accessor.sparse.values.byteOffset < 0)
+            throw Error(file + ": sparse data of " + name + ": count or byteOffset out of range");
+        size_t count = size_t(accessor.sparse.count);
         ViewBytes indexBytes = viewBytes(model, accessor.sparse.indices.bufferView, file);
         ViewBytes valueBytes = viewBytes(model, accessor.sparse.values.bufferView, file);
         int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.sparse.indices.componentType));
-        if (indexSize <= 0 || accessor.sparse.indices.byteOffset + count * size_t(indexSize) > indexBytes.size ||
-            accessor.sparse.values.byteOffset + count * elementSize > valueBytes.size)
+        if (indexSize <= 0 || accessor.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+            !rangeFits(uint64_t(accessor.sparse.indices.byteOffset), count, uint64_t(indexSize), uint64_t(indexSize), indexBytes.size) ||
+            !rangeFits(uint64_t(accessor.sparse.values.byteOffset), count, elementSize, elementSize, valueBytes.size))
             throw Error(file + ": sparse data of " + name + " reads past its bufferView");
         for (size_t k = 0; k < count; ++k) {
             uint32_t target = readIndex(indexBytes.data + accessor.sparse.indices.byteOffset + k * indexSize,
@@ -162,10 +192,14 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& model, int index, const
         for (const glm::vec1& v : readFloatAccessor<1>(model, index, file)) out.push_back(uint32_t(v.x));
         return out;
     }
+    if (accessor.count > kMaxAccessorElements)
+        throw Error(file + ": " + name + ": count " + std::to_string(accessor.count) + " exceeds the limit " +
+                    std::to_string(kMaxAccessorElements));
     ViewBytes bytes = viewBytes(model, accessor.bufferView, file);
     size_t stride = bytes.stride ? bytes.stride : size_t(size);
-    if (accessor.count > 0 && accessor.byteOffset + stride * (accessor.count - 1) + size > bytes.size)
-        throw Error(file + ": " + name + " reads past its bufferView");
+    if (!rangeFits(accessor.byteOffset, accessor.count, stride, uint64_t(size), bytes.size))
+        throw Error(file + ": " + name + ": byteOffset " + std::to_string(accessor.byteOffset) + " and count " +
+                    std::to_string(accessor.count) + " read past its bufferView (" + std::to_string(bytes.size) + " bytes)");
     std::vector<uint32_t> out(accessor.count);
     for (size_t i = 0; i < accessor.count; ++i) out[i] = readIndex(bytes.data + accessor.byteOffset + i * stride, accessor.componentType);
     return out;
@@ -235,13 +269,21 @@ public:
     SceneBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file), warnings_(file) {}
 
     Scene build(const std::string& name) {
+        // glTF 1.0 files parse into nonsense under the 2.0 schema: refuse them by name (glTF 3.3 asset.version).
+        if (model_.asset.version.rfind("2.", 0) != 0)
+            throw Error(file_ + ": asset.version '" + model_.asset.version + "' is not glTF 2.x");
+        if (!model_.asset.minVersion.empty() && model_.asset.minVersion.rfind("2.0", 0) != 0)
+            throw Error(file_ + ": asset.minVersion '" + model_.asset.minVersion + "' is newer than glTF 2.0");
+        if (model_.nodes.size() > kMaxNodes)
+            throw Error(file_ + ": nodes: " + std::to_string(model_.nodes.size()) + " nodes exceed the limit " + std::to_string(kMaxNodes));
         checkExtensions();
         scene_.name = name;
         scene_.skyColor = {0.3f, 0.35f, 0.4f};
         for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(int(i)));
         buildMeshes();
         walkNodes();
-        if (scene_.instances.empty()) throw Error(file_ + ": glTF has no mesh to render");
+        if (scene_.instances.empty())
+            throw Error(file_ + ": glTF has no mesh to render" + (skippedInstances_ ? " (every instance has a singular or out-of-range transform)" : ""));
         addFramingCameraAndLight();
         return std::move(scene_);
     }
@@ -316,8 +358,15 @@ private:
         Material m;
         m.name = gm.name.empty() ? "material" + std::to_string(index) : gm.name;
         const auto& pbr = gm.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            m.baseColor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+        if (pbr.baseColorFactor.size() == 4) {
+            // glTF 3.9.2: each factor lies in [0, 1]. Outside it (negative, huge, NaN) the image is meaningless.
+            for (int c = 0; c < 4; ++c)
+                if (!(pbr.baseColorFactor[size_t(c)] >= -1e-3 && pbr.baseColorFactor[size_t(c)] <= 1.001))
+                    throw Error(file_ + ": materials[" + std::to_string(index) + "].pbrMetallicRoughness.baseColorFactor[" +
+                                std::to_string(c) + "] = " + std::to_string(pbr.baseColorFactor[size_t(c)]) + " is outside [0, 1]");
+            m.baseColor = glm::clamp(glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]),
+                                     glm::vec4(0.0f), glm::vec4(1.0f));
+        }
         float roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
         m.alpha = std::max(roughness * roughness, 1e-3f);  // the G-buffer multiplies by the texture's roughness^2
         m.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
@@ -404,10 +453,18 @@ private:
                 if (found != meshOfGeometry.end()) {
                     meshIndex = found->second;
                 } else {
+                    MeshData mesh = readPrimitive(primitive, model_.meshes[mi].name, int(mi));
+                    if (mesh.indices.empty()) {
+                        // Fewer than three indices: nothing to draw (and nothing a GPU upload may read past).
+                        warnings_.add("mesh " + std::to_string(mi) + " has a primitive without a complete triangle; skipped");
+                        meshOfGeometry[key] = kNoMesh;
+                        continue;
+                    }
                     meshIndex = uint32_t(scene_.meshes.size());
-                    scene_.meshes.push_back(readPrimitive(primitive, model_.meshes[mi].name, int(mi)));
+                    scene_.meshes.push_back(std::move(mesh));
                     meshOfGeometry[key] = meshIndex;
                 }
+                if (meshIndex == kNoMesh) continue;
                 int material = primitive.material;
                 if (material < 0 || material >= int(scene_.materials.size())) {
                     if (material >= 0) warnings_.add("a primitive names material " + std::to_string(material) + ", which does not exist; default used");
@@ -423,6 +480,9 @@ private:
         mesh.name = name.empty() ? "mesh" + std::to_string(meshIndex) : name;
         mesh.positions = readFloatAccessor<3>(model_, primitive.attributes.at("POSITION"), file_);
         size_t n = mesh.positions.size();
+        totalVertices_ += n;
+        if (totalVertices_ > kMaxSceneVertices)
+            throw Error(file_ + ": meshes: more than " + std::to_string(kMaxSceneVertices) + " vertices in total");
         auto optional = [&](const char* attribute, auto& target, auto reader) {
             auto it = primitive.attributes.find(attribute);
             if (it == primitive.attributes.end()) return;
@@ -441,11 +501,20 @@ private:
             for (uint32_t i = 0; i < n; ++i) mesh.indices.push_back(i);
         }
         mesh.indices.resize(mesh.indices.size() / 3 * 3);
+        mesh.indices.shrink_to_fit();
+        totalIndices_ += mesh.indices.size();
+        if (totalIndices_ > kMaxSceneIndices)
+            throw Error(file_ + ": meshes: more than " + std::to_string(kMaxSceneIndices) + " indices in total");
         for (uint32_t index : mesh.indices)
             if (index >= n) throw Error(file_ + ": vertex index " + std::to_string(index) + " out of range in mesh " + std::to_string(meshIndex));
-        for (const glm::vec3& p : mesh.positions)
+        for (const glm::vec3& p : mesh.positions) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 throw Error(file_ + ": non-finite vertex position in mesh " + std::to_string(meshIndex));
+            if (glm::any(glm::greaterThan(glm::abs(p), glm::vec3(kMaxCoordinate))))
+                throw Error(file_ + ": meshes[" + std::to_string(meshIndex) + "] POSITION " + std::to_string(p.x) + ", " +
+                            std::to_string(p.y) + ", " + std::to_string(p.z) + " is beyond the coordinate limit " +
+                            std::to_string(kMaxCoordinate));
+        }
         if (mesh.normals.empty()) {
             // glTF 3.7.2.1: without normals, flat normals are expected. Area-weighted vertex normals are a
             // smooth approximation that needs no vertex splitting.
@@ -478,17 +547,34 @@ private:
 
     void walkNodes() {
         // The default scene (or scene 0); a file without scenes shows every mesh once at the origin.
+        // Nodes may share children (a DAG is legal glTF), so the number of paths, not of nodes, bounds the work:
+        // visits and instances are counted against kMaxInstances as they are made.
         std::vector<bool> onPath(model_.nodes.size(), false);
+        uint64_t visits = 0, triangles = 0;
         std::function<void(int, const glm::mat4&, int)> visit = [&](int nodeIndex, const glm::mat4& parent, int depth) {
             const tinygltf::Node& node = element(model_.nodes, nodeIndex, "node", file_);
-            if (onPath[size_t(nodeIndex)] || depth > 256)
+            if (onPath[size_t(nodeIndex)])
                 throw Error(file_ + ": node hierarchy has a cycle at node " + std::to_string(nodeIndex));
+            if (depth > kMaxHierarchyDepth)
+                throw Error(file_ + ": node hierarchy is deeper than " + std::to_string(kMaxHierarchyDepth) + " at node " + std::to_string(nodeIndex));
+            if (++visits > kMaxInstances)
+                throw Error(file_ + ": nodes: the hierarchy expands to more than " + std::to_string(kMaxInstances) +
+                            " node instances (nodes sharing children)");
             onPath[size_t(nodeIndex)] = true;
             glm::mat4 world = parent * nodeMatrix(node);
             if (node.mesh >= 0) {
                 element(model_.meshes, node.mesh, "mesh", file_);
-                for (auto [meshIndex, material] : primitivesOfMesh_[size_t(node.mesh)])
-                    scene_.instances.push_back({meshIndex, material, world});
+                if (!usableTransform(world, nodeIndex)) {
+                    ++skippedInstances_;
+                } else {
+                    for (auto [meshIndex, material] : primitivesOfMesh_[size_t(node.mesh)]) {
+                        triangles += scene_.meshes[meshIndex].indices.size() / 3;
+                        if (scene_.instances.size() >= kMaxInstances || triangles > kMaxInstancedTriangles)
+                            throw Error(file_ + ": nodes: instancing expands to more than " + std::to_string(kMaxInstances) +
+                                        " instances or " + std::to_string(kMaxInstancedTriangles) + " triangles");
+                        scene_.instances.push_back({meshIndex, material, world});
+                    }
+                }
             }
             if (node.camera >= 0) addCamera(element(model_.cameras, node.camera, "camera", file_), node, world);
             for (int child : node.children) visit(child, world, depth + 1);
@@ -503,6 +589,28 @@ private:
         }
     }
 
+    // A world transform that keeps the mesh finite, inside the coordinate limit and not flattened to nothing;
+    // otherwise the instance is skipped with a warning naming the node (a zero scale hides a node on purpose).
+    bool usableTransform(const glm::mat4& m, int nodeIndex) {
+        std::string where = "node " + std::to_string(nodeIndex);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r])) {
+                    warnings_.add(where + " has a non-finite transform (matrix, translation, rotation or scale); its mesh is skipped");
+                    return false;
+                }
+        if (glm::any(glm::greaterThan(glm::abs(glm::vec3(m[3])), glm::vec3(kMaxCoordinate)))) {
+            warnings_.add(where + " translates beyond the coordinate limit; its mesh is skipped");
+            return false;
+        }
+        float det = glm::determinant(glm::mat3(m));
+        if (!(std::abs(det) > 1e-30f) || !std::isfinite(det)) {
+            warnings_.add(where + " has a singular transform (zero scale or matrix); its mesh is skipped");
+            return false;
+        }
+        return true;
+    }
+
     // glTF cameras look down their local -Z with +Y up (glTF 3.10.1). Orthographic ones are skipped.
     void addCamera(const tinygltf::Camera& gc, const tinygltf::Node& node, const glm::mat4& world) {
         if (gc.type != "perspective") {
@@ -515,8 +623,20 @@ private:
         glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
         camera.target = camera.position + forward;
         camera.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
-        if (gc.perspective.yfov > 0) camera.verticalFovDegrees = float(glm::degrees(gc.perspective.yfov));
-        if (gc.perspective.znear > 0) camera.nearPlane = float(gc.perspective.znear);
+        // glTF 3.10.2: yfov > 0 (radians), znear > 0; a field of view of pi or more shows nothing meaningful.
+        std::string where = file_ + ": cameras[" + std::to_string(node.camera) + "].perspective.";
+        if (!(gc.perspective.yfov > 0.0 && gc.perspective.yfov < 3.0))
+            throw Error(where + "yfov " + std::to_string(gc.perspective.yfov) + " is outside (0, 3) radians");
+        if (!(gc.perspective.znear > 0.0 && gc.perspective.znear < 1e6))
+            throw Error(where + "znear " + std::to_string(gc.perspective.znear) + " is outside (0, 1e6)");
+        glm::vec3 forwardAxis = glm::vec3(world * glm::vec4(0, 0, -1, 0)), upAxis = glm::vec3(world * glm::vec4(0, 1, 0, 0));
+        bool finite = std::isfinite(glm::dot(forwardAxis, forwardAxis)) && std::isfinite(glm::dot(upAxis, upAxis)) &&
+                      glm::all(glm::lessThanEqual(glm::abs(glm::vec3(world[3])), glm::vec3(kMaxCoordinate)));
+        if (!finite || glm::length(forwardAxis) < 1e-12f || glm::length(glm::cross(forwardAxis, upAxis)) < 1e-12f)
+            throw Error(file_ + ": the node of camera " + std::to_string(node.camera) +
+                        " has a transform that is singular, non-finite or beyond the coordinate limit");
+        camera.verticalFovDegrees = float(glm::degrees(gc.perspective.yfov));
+        camera.nearPlane = float(gc.perspective.znear);
         gltfCameras_.push_back(camera);
     }
 
@@ -561,41 +681,153 @@ private:
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> primitivesOfMesh_;
     std::vector<Camera> gltfCameras_;
     int defaultMaterial_ = -1;
+    uint64_t totalVertices_ = 0, totalIndices_ = 0, skippedInstances_ = 0;
+    static constexpr uint32_t kNoMesh = 0xFFFFFFFFu;
 };
 
-// Decodes with tinygltf's own loader, but turns a failure into a warning (the image stays empty and textures
-// using it are ignored) instead of failing the whole file: e.g. KTX2 / WebP images of KHR_texture_basisu or
-// EXT_texture_webp, which tinygltf cannot decode, leave a model that still renders meaningfully.
-bool tolerantImageLoader(tinygltf::Image* image, const int index, std::string* error, std::string* warning, int width,
-                         int height, const unsigned char* bytes, int size, void*) {
+// Decodes with tinygltf's own loader (stb_image), but only PNG and JPEG (the formats glTF 2.0 core allows,
+// glTF 3.8.4), and only after the header's size was checked against the texture limits and the bytes that hold
+// it: stb_image would otherwise allocate whatever a forged header claims. A format it cannot decode (KTX2,
+// WebP of KHR_texture_basisu / EXT_texture_webp) becomes a warning: the image stays empty and textures using it
+// are ignored, so the model still renders meaningfully.
+bool checkedImageLoader(tinygltf::Image* image, const int index, std::string* error, std::string* warning, int width,
+                        int height, const unsigned char* bytes, int size, void*) {
+    auto ignore = [&](const std::string& why) {
+        if (warning) *warning += "image " + std::to_string(index) + " " + why + "\n";
+        image->width = image->height = 0;
+        image->image.clear();
+        return true;
+    };
+    std::string format = sniffImageFormat(bytes, size_t(std::max(size, 0)));
+    if (format != "png" && format != "jpeg") return ignore("is not PNG or JPEG; textures using it are ignored");
+    int w = 0, h = 0, channels = 0;
+    if (!readImageHeader(bytes, size_t(size), w, h, channels)) return ignore("has an unreadable " + format + " header; ignored");
+    try {
+        checkImageSize("images[" + std::to_string(index) + "]", w, h, std::max(channels, 1), 1, uint64_t(size), ImageUse::Texture);
+    } catch (const Error& e) {
+        if (error) *error += std::string(e.what()) + "\n";
+        return false;
+    }
     std::string decodeError;
     if (tinygltf::LoadImageData(image, index, &decodeError, warning, width, height, bytes, size, nullptr)) return true;
-    if (warning) *warning += "image " + std::to_string(index) + " could not be decoded (" + firstLine(decodeError) + ")\n";
-    image->width = image->height = 0;
-    image->image.clear();
-    (void)error;
+    return ignore("could not be decoded (" + firstLine(decodeError) + ")");
+}
+
+// URI policy (README "Bad input"): external buffers and images must resolve, after percent-decoding (tinygltf)
+// and following symlinks, to files inside the model's folder, unless --allow-outside-uris. A downloaded model
+// must not read ~/.ssh/id_rsa through "../../.ssh/id_rsa". Files are read only when they are regular files (a FIFO
+// would block) no larger than kMaxModelFileBytes. No "~" or "$VAR" expansion (tinygltf's default expands them).
+struct FileAccess {
+    std::filesystem::path root;  // canonical folder of the model
+    bool allowOutside = false;
+};
+bool allowOutsideUris = false;
+
+bool isInside(const std::filesystem::path& file, const std::filesystem::path& root) {
+    auto f = file.begin(), r = root.begin();
+    for (; r != root.end(); ++r, ++f)
+        if (f == file.end() || *f != *r) return false;
+    return f != file.end();
+}
+
+bool fsFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+
+std::string fsExpandFilePath(const std::string& path, void*) { return path; }
+
+bool fsReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    const FileAccess& access = *static_cast<const FileAccess*>(user);
+    std::error_code ec;
+    std::filesystem::path resolved = std::filesystem::weakly_canonical(path, ec);
+    auto fail = [&](const std::string& why) {
+        if (err) *err += why;
+        return false;
+    };
+    if (ec) return fail("cannot resolve the path");
+    if (!access.allowOutside && !isInside(resolved, access.root))
+        return fail("refused: the URI leads outside the model's folder to " + resolved.string() + " (--allow-outside-uris permits it)");
+    if (!std::filesystem::is_regular_file(resolved, ec)) return fail("not a regular file");
+    uint64_t size = std::filesystem::file_size(resolved, ec);
+    if (ec || size > kMaxModelFileBytes)
+        return fail("larger than the limit of " + std::to_string(kMaxModelFileBytes) + " bytes");
+    std::ifstream in(resolved, std::ios::binary);
+    out->resize(size_t(size));
+    if (!in || !in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return fail("read error");
     return true;
+}
+
+bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "the loader never writes files";
+    return false;
+}
+
+uint32_t littleEndian32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
+
+// Reads the model file after checking what can be checked from its size and first bytes, so a huge or wrong
+// file is refused before it is read whole.
+std::vector<unsigned char> readModelFile(const std::filesystem::path& path, bool binary) {
+    const std::string file = path.string();
+    std::error_code ec;
+    uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw Error(file + ": cannot read (" + ec.message() + ")");
+    if (size > kMaxModelFileBytes)
+        throw Error(file + ": " + std::to_string(size) + " bytes exceed the limit of " + std::to_string(kMaxModelFileBytes));
+    std::ifstream in(path, std::ios::binary);
+    unsigned char head[12] = {};
+    in.read(reinterpret_cast<char*>(head), sizeof head);
+    size_t got = size_t(in.gcount());
+    if (binary) {
+        // GLB header (glTF 4.4.3): magic "glTF", version, total length.
+        if (got < 12 || std::memcmp(head, "glTF", 4) != 0) throw Error(file + ": not a binary glTF (no 'glTF' magic)");
+        uint32_t version = littleEndian32(head + 4), length = littleEndian32(head + 8);
+        if (version != 2) throw Error(file + ": GLB header version " + std::to_string(version) + " (only 2 is supported)");
+        if (length > size) throw Error(file + ": GLB header length " + std::to_string(length) + " exceeds the file's " + std::to_string(size) + " bytes");
+    } else {
+        size_t at = got >= 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF ? 3 : 0;
+        while (at < got && std::isspace(head[at])) ++at;
+        if (got > 0 && at < got && head[at] != '{') throw Error(file + ": not a JSON glTF (does not start with '{')");
+    }
+    std::vector<unsigned char> bytes(static_cast<size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) throw Error(file + ": read error");
+    return bytes;
 }
 
 }  // namespace
 
+void setAllowOutsideUris(bool allow) { allowOutsideUris = allow; }
+
 Scene loadGltfScene(const std::filesystem::path& path) {
     const std::string file = path.string();
-    if (!std::filesystem::is_regular_file(path)) throw Error(file + ": glTF file not found");
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(tolerantImageLoader, nullptr);
-    tinygltf::Model model;
-    std::string error, warning;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(file + ": glTF file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(file + ": not a regular file");
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    const bool binary = ext == ".glb";
+    std::vector<unsigned char> bytes = readModelFile(path, binary);
+
+    FileAccess access;
+    access.root = std::filesystem::weakly_canonical(std::filesystem::absolute(path).parent_path(), ec);
+    access.allowOutside = allowOutsideUris;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(checkedImageLoader, nullptr);
+    loader.SetFsCallbacks({fsFileExists, fsExpandFilePath, fsReadWholeFile, fsWriteWholeFile, &access});
+    tinygltf::Model model;
+    std::string error, warning;
+    const std::string baseDir = std::filesystem::absolute(path).parent_path().string();
     bool ok = false;
     try {
-        ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
-                           : loader.LoadASCIIFromFile(&model, &error, &warning, file);
+        ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), unsigned(bytes.size()), baseDir)
+                    : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(bytes.data()),
+                                                 unsigned(bytes.size()), baseDir);
     } catch (const std::exception& e) {
         throw Error(file + ": cannot load glTF (" + firstLine(e.what()) + ")");
     }
     if (!ok) throw Error(file + ": cannot load glTF (" + firstLine(error.empty() ? "unknown error" : error) + ")");
+    bytes = {};
     SceneBuilder builder(model, file);
     // tinygltf reports missing images and similar non-fatal problems as warnings, one per line.
     for (size_t start = 0; start < warning.size();) {

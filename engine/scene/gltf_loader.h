@@ -7,6 +7,9 @@
 namespace glimmer {
 
 // Throws glimmer::Error naming the file on missing, corrupt or unsupported input.
+// Limits: scene/scene_limits.h. External URIs must stay inside the model's folder (see the .cpp) unless
+// setAllowOutsideUris(true) (--allow-outside-uris).
 Scene loadGltfScene(const std::filesystem::path& path);
+void setAllowOutsideUris(bool allow);
 
 }  // namespace glimmer

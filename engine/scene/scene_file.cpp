@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "core/error.h"
@@ -14,6 +15,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/mesh_builder.h"
+#include "scene/scene_limits.h"
 #include "scene/uv_transform.h"
 
 namespace glimmer {
@@ -44,7 +46,9 @@ public:
     float number(const Json& value, const std::string& where) const {
         if (!value.is_number()) fail(where, "expected a number");
         double v = value.get<double>();
-        if (!std::isfinite(v)) fail(where, "expected a finite number");
+        // The engine computes in float: 1e300 is finite as a double but infinite as a float.
+        if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+            fail(where, "expected a finite number (within float range)");
         return float(v);
     }
     float number(const Json& object, const char* key, const std::string& where, float fallback, float lo, float hi) const {
@@ -57,9 +61,12 @@ public:
         if (!object.contains(key)) return fallback;
         const Json& v = object[key];
         if (!v.is_number_integer()) fail(where + "." + key, "expected an integer");
-        int i = v.get<int>();
-        if (i < lo || i > hi) fail(where + "." + key, "value " + std::to_string(i) + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        return i;
+        // Compare in 64 bits (unsigned JSON integers above 2^63 are out of range by definition): get<int>()
+        // would wrap 4294967297 to 1.
+        bool inRange = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(std::max(hi, 0)) && v.get<uint64_t>() >= uint64_t(std::max(lo, 0))
+                                              : v.get<int64_t>() >= lo && v.get<int64_t>() <= hi;
+        if (!inRange) fail(where + "." + key, "value " + v.dump() + " outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return int(v.get<int64_t>());
     }
     bool boolean(const Json& object, const char* key, const std::string& where, bool fallback) const {
         if (!object.contains(key)) return fallback;
@@ -78,10 +85,22 @@ public:
         for (int i = 0; i < N; ++i) v[i] = number(value[size_t(i)], where + "[" + std::to_string(i) + "]");
         return v;
     }
-    // Colour: [r, g, b] or [r, g, b, a] (linear).
-    glm::vec4 colour(const Json& value, const std::string& where) const {
-        if (value.is_array() && value.size() == 3) return glm::vec4(vec<3>(value, where), 1.0f);
-        return vec<4>(value, where);
+    // Colour: [r, g, b] or [r, g, b, a] (linear), each in [0, hi] (negative radiance or reflectance makes
+    // physically meaningless images).
+    glm::vec4 colour(const Json& value, const std::string& where, float hi = 1.0f) const {
+        glm::vec4 c = value.is_array() && value.size() == 3 ? glm::vec4(vec<3>(value, where), 1.0f) : vec<4>(value, where);
+        for (int i = 0; i < 4; ++i)
+            if (!(c[i] >= 0.0f && c[i] <= hi))
+                fail(where + "[" + std::to_string(i) + "]", "value " + std::to_string(c[i]) + " outside [0, " + std::to_string(hi) + "]");
+        return c;
+    }
+    // A position in metres, each coordinate within kMaxCoordinate.
+    glm::vec3 position(const Json& value, const std::string& where) const {
+        glm::vec3 p = vec<3>(value, where);
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(p[i]) > kMaxCoordinate)
+                fail(where + "[" + std::to_string(i) + "]", "value " + std::to_string(p[i]) + " beyond the coordinate limit " + std::to_string(kMaxCoordinate));
+        return p;
     }
     std::filesystem::path path(const Json& object, const char* key, const std::string& where) const {
         std::filesystem::path p = string(object, key, where);
@@ -98,7 +117,7 @@ private:
 // "scale" (number or [x,y,z]): M = T * Rz * Ry * Rx * S.
 glm::mat4 readTransform(const Reader& r, const Json& o, const std::string& where) {
     glm::mat4 m(1.0f);
-    if (o.contains("translation")) m = glm::translate(m, r.vec<3>(o["translation"], where + ".translation"));
+    if (o.contains("translation")) m = glm::translate(m, r.position(o["translation"], where + ".translation"));
     if (o.contains("rotationDegrees")) {
         glm::vec3 deg = r.vec<3>(o["rotationDegrees"], where + ".rotationDegrees");
         m = glm::rotate(m, glm::radians(deg.z), glm::vec3(0, 0, 1));
@@ -107,7 +126,9 @@ glm::mat4 readTransform(const Reader& r, const Json& o, const std::string& where
     }
     if (o.contains("scale")) {
         glm::vec3 s = o["scale"].is_number() ? glm::vec3(r.number(o["scale"], where + ".scale")) : r.vec<3>(o["scale"], where + ".scale");
-        if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(where + ".scale", "scale must not be zero");
+        for (int i = 0; i < 3; ++i)
+            if (!(std::abs(s[i]) >= 1e-6f && std::abs(s[i]) <= 1e6f))
+                r.fail(where + ".scale", "each scale must have a magnitude in [1e-6, 1e6]");
         m = glm::scale(m, s);
     }
     return m;
@@ -149,7 +170,7 @@ int loadTexture(Scene& scene, const Reader& r, const Json& o, const char* key, c
     std::filesystem::path path = r.path(o, key, where);
     ImageF image;
     try {
-        image = readImage(path);
+        image = readImage(path, ImageUse::Texture);
     } catch (const Error& e) {
         r.fail(where + "." + key, e.what());
     }
@@ -225,11 +246,11 @@ Light readLight(const Reader& r, const Json& o, const std::string& where) {
     } else if (type == "point") {
         light.type = LightType::Point;
         if (!o.contains("position")) r.fail(where, "a point light needs \"position\"");
-        light.vector = r.vec<3>(o["position"], where + ".position");
+        light.vector = r.position(o["position"], where + ".position");
     } else {
         r.fail(where + ".type", "expected \"directional\" or \"point\"");
     }
-    if (o.contains("color")) light.color = r.vec<3>(o["color"], where + ".color");
+    if (o.contains("color")) light.color = glm::vec3(r.colour(o["color"], where + ".color", 1e6f));
     light.intensity = r.number(o, "intensity", where, 1.0f, 0.0f, 1e9f);
     return light;
 }
@@ -240,8 +261,8 @@ Camera readCamera(const Reader& r, const Json& o, const std::string& where) {
     c.name = r.string(o, "name", where);
     if (c.name.empty()) r.fail(where + ".name", "every camera needs a name");
     if (!o.contains("position") || !o.contains("target")) r.fail(where, "a camera needs \"position\" and \"target\"");
-    c.position = r.vec<3>(o["position"], where + ".position");
-    c.target = r.vec<3>(o["target"], where + ".target");
+    c.position = r.position(o["position"], where + ".position");
+    c.target = r.position(o["target"], where + ".target");
     if (o.contains("up")) c.up = r.vec<3>(o["up"], where + ".up");
     if (glm::length(c.target - c.position) < 1e-6f) r.fail(where, "position and target coincide");
     if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-6f) r.fail(where + ".up", "parallel to the view direction");
@@ -289,14 +310,24 @@ uint32_t findByName(const Reader& r, const std::vector<std::string>& names, cons
 }  // namespace
 
 Scene loadSceneFile(const std::filesystem::path& path) {
-    if (!std::filesystem::is_regular_file(path)) throw Error(path.string() + ": scene file not found");
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(path.string() + ": scene file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(path.string() + ": scene file is not a regular file");
+    if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes)
+        throw Error(path.string() + ": scene file larger than the limit of " + std::to_string(kMaxSceneFileBytes) + " bytes");
     Reader r(path);
     Json doc;
+    std::string lastKey;  // the key being read when parsing fails, to name the field
     try {
-        doc = Json::parse(readTextFile(path));
-    } catch (const Json::parse_error& e) {
+        doc = Json::parse(readTextFile(path), [&](int, Json::parse_event_t event, Json& parsed) {
+            if (event == Json::parse_event_t::key && parsed.is_string()) lastKey = parsed.get<std::string>();
+            return true;
+        });
+    } catch (const Json::exception& e) {
+        // parse_error, and out_of_range for numbers such as 1e309 that overflow a double.
         std::string what = e.what();
-        throw Error(path.string() + ": invalid JSON (" + what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
+        throw Error(path.string() + ": invalid JSON" + (lastKey.empty() ? "" : " at key '" + lastKey + "'") + " (" +
+                    what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
     }
     r.checkKeys(doc, "scene", {"name", "base", "sky", "environment", "meshes", "models", "materials", "instances",
                                "lights", "cameras", "walkthrough", "description"});
@@ -312,7 +343,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
         scene = makeBuiltinScene(base);
     }
     scene.name = r.string(doc, "name", "scene", path.stem().string());
-    if (doc.contains("sky")) scene.skyColor = r.vec<3>(doc["sky"], "sky");
+    if (doc.contains("sky")) scene.skyColor = glm::vec3(r.colour(doc["sky"], "sky", 1e6f));
     if (doc.contains("environment")) {
         std::string env = r.string(doc, "environment", "scene");
         scene.environment = env.empty() || env == "none" ? env : r.path(doc, "environment", "scene").string();
