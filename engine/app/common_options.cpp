@@ -11,12 +11,12 @@
 
 namespace glimmer {
 
-RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene) {
+RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene, const std::string& defaultMethod) {
     RenderRequest request;
     request.scene = args.valueOr("--scene", defaultScene);
     request.camera = args.valueOr("--camera", "");
     request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));
-    request.settings.method = args.valueOr("--method", "smooth");
+    request.settings.method = args.valueOr("--method", defaultMethod);
     findGlintMethod(request.settings.method);
     request.settings.ibl = args.valueOr("--ibl", "prefiltered");
     checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);

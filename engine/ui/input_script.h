@@ -5,7 +5,7 @@
 //   2.5 up w          down, left, right)            ... released at 2.5 s
 //   3.0 press f       a press and release (actions: toggles, camera keys)
 //   3.2 look 120 -40  mouse look by (dx, dy) pixels, as a captured mouse would
-//   4.0 print         one line on stdout: "time T position X Y Z mode walk|fly"
+//   4.0 print         one line on stdout: "time T position X Y Z mode walk|fly speed S"
 //   4.0 screenshot F  writes the window image (PNG) to F
 //   4.5 quit          closes the window
 #pragma once
