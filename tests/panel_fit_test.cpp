@@ -100,6 +100,38 @@ TEST(PanelFit, EveryWidgetIsOnScreenWithoutOverlapAtThreeWindowSizes) {
             }
 }
 
+// Clicking a closed section's header opens it (from the next frame) and closes the open one; clicking the open
+// one closes it.
+TEST(PanelFit, ClickingASectionHeaderOpensItAndClosesTheOther) {
+    Context ui;
+    WindowControls window = atriumControls();
+    RenderSettings settings;
+    auto frame = [&](const Input& input) {
+        PanelLayout layout = panelLayout(1280, 720, kMaxStatsLines);
+        ui.begin(input, 1280, 720, layout.scale);
+        settingsPanel(ui, settings, window, layout.x, layout.y, layout.maxHeight);
+        ui.end();
+    };
+    frame({});
+    EXPECT_EQ(ui.openSection(kPanelId), "Method (M)");
+    ASSERT_TRUE(ui.widgetRect("+ Lights"));
+    Input click;
+    click.mouse = ui.widgetRect("+ Lights")->at(0.5f, 0.5f);
+    click.mousePressed = click.mouseDown = true;
+    frame(click);
+    frame({});
+    EXPECT_EQ(ui.openSection(kPanelId), "Lights");
+    EXPECT_TRUE(ui.widgetRect("- Lights"));
+    EXPECT_TRUE(ui.widgetRect("+ Method (M)"));
+    EXPECT_FALSE(ui.widgetRect("method"));
+    EXPECT_TRUE(ui.widgetRect("light.intensity"));
+    click.mouse = ui.widgetRect("- Lights")->at(0.5f, 0.5f);
+    frame(click);
+    frame({});
+    EXPECT_EQ(ui.openSection(kPanelId), "");
+    EXPECT_FALSE(ui.widgetRect("light.intensity"));
+}
+
 // Integer scales by window height; at the three sizes the Method section of the method with the most
 // parameters (wang2020) is all on screen (checked above), so the scale is the largest that allows it.
 TEST(PanelFit, ScaleIsAnIntegerThatGrowsWithTheWindow) {

@@ -178,6 +178,7 @@ public:
             drawFrame(width, height);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();
+            if (scriptQuit_ && scriptScreenshot_.empty()) window_.requestClose();  // after a pending screenshot
             // The script's clock starts once the first frame (shader builds, environment precomputation) is done.
             if (script_ && scriptOffset_ < 0.0) scriptOffset_ = glfwGetTime() - start;
         }
@@ -274,8 +275,12 @@ private:
             std::fflush(stdout);
             break;
         }
-        case ui::ScriptEvent::Kind::Screenshot: scriptScreenshot_ = e.path; break;
-        case ui::ScriptEvent::Kind::Quit: window_.requestClose(); break;
+        case ui::ScriptEvent::Kind::Screenshot:
+            // Written at the end of the next frame, whose panel and stats strip have seen every earlier event.
+            scriptScreenshot_ = e.path;
+            scriptScreenshotDelay_ = 1;
+            break;
+        case ui::ScriptEvent::Kind::Quit: scriptQuit_ = true; break;
         }
     }
 
@@ -795,7 +800,7 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(present_.framebuffer(), 0, 0, 0, width, height, 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        if (!scriptScreenshot_.empty()) {
+        if (!scriptScreenshot_.empty() && scriptScreenshotDelay_-- <= 0) {
             writeScreenshot(scriptScreenshot_);
             scriptScreenshot_.clear();
         }
@@ -874,6 +879,8 @@ private:
     ui::KeyHolds keys_;
     std::unique_ptr<ui::ScriptPlayer> script_;
     std::string scriptScreenshot_;
+    int scriptScreenshotDelay_ = 0;
+    bool scriptQuit_ = false;
     double scriptOffset_ = -1.0;     // frame-clock time of script time 0 (the end of the first frame)
     ui::Input pendingScriptInput_;   // panel keys from the script, given to the panel next frame
     // Accumulation of Monte Carlo IBL modes (updateAccumulation).

@@ -94,6 +94,8 @@ void Context::begin(const Input& input, int screenWidth, int screenHeight, int s
     panelAreas_.clear();
     mouseOverUi_ = false;
     if (!input_.mouseDown) active_.clear();
+    for (const auto& [panel, section] : pendingSection_) openSection_[panel] = section;
+    pendingSection_.clear();
     lastFocusableCount_ = focusableCount_;
     focusableCount_ = 0;
     if (input_.focusMove != 0 && lastFocusableCount_ > 0) {
@@ -213,12 +215,9 @@ bool Context::section(std::string_view text, bool openByDefault) {
     if (visible && input_.mousePressed && hovered(row)) { toggled = true; focus_ = index; focused = true; }
     if (focused && input_.activate) toggled = true;
     if (focused) { panel_->focusTop = contentY; panel_->focusBottom = contentY + row.h; }
-    if (toggled) {
-        open = !open;
-        openSection_[panel_->id] = open ? name : std::string();
-        shown = (open ? "- " : "+ ") + name;
-        layout_.back().first = shown;
-    }
+    // Applied at the next begin(): sections above this one were laid out already this frame, and opening this
+    // one now would show two open sections (too tall for the window) for a frame.
+    if (toggled) pendingSection_[panel_->id] = open ? std::string() : name;
     if (visible) {
         draw_.fill(row, hovered(row) ? palette::kRowHover : palette::kPanel);
         draw_.text({row.x + float(2 * scale_), textTop(row, scale_)}, shown, palette::kHeading, scale_, row.w);

@@ -162,6 +162,7 @@ private:
     int focus_ = -1, focusableCount_ = 0, lastFocusableCount_ = 0;
     std::vector<std::pair<std::string, Rect>> layout_;
     std::map<std::string, std::string> openSection_;  // panel id -> open section ("" = all closed)
+    std::map<std::string, std::string> pendingSection_;  // a header clicked this frame, applied at begin()
     std::map<std::string, Rect> panelAreas_;
 };
 
