@@ -148,6 +148,14 @@ TEST(WalkCollision, WalkingModeNeedsACameraStandingOnAFloor) {
     for (int i = 0; i < 40; ++i) motion.advance(none, i * 0.05, (i + 1) * 0.05, 1.0f);
     EXPECT_NEAR(motion.camera().position.y, 1.7f, 0.03f);
     motion.setMode(ui::MoveMode::Fly);
+    // Outside the floor's extent there is nothing to land on: walking is refused instead of falling forever.
+    Camera outside = high;
+    outside.position.x = 50.0f;
+    outside.target.x = 51.0f;
+    motion.setCamera(outside, ui::MoveMode::Fly);
+    EXPECT_FALSE(motion.setMode(ui::MoveMode::Walk));
+    EXPECT_EQ(motion.mode(), ui::MoveMode::Fly);
+    motion.setCamera(high, ui::MoveMode::Fly);
     auto forward = [](ui::MoveKey key, double a, double b) { return key == ui::MoveKey::Forward ? b - a : 0.0; };
     motion.advance(forward, 0.0, 0.5, 20.0f);
     EXPECT_GT(motion.camera().position.x, 6.0f);

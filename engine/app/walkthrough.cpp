@@ -305,7 +305,7 @@ private:
         ui::MoveMode next = motion_->mode() == ui::MoveMode::Walk ? ui::MoveMode::Fly : ui::MoveMode::Walk;
         stopWalkthrough();
         if (!motion_->setMode(next)) {
-            showMessage("walking needs a scene with triangles");
+            showMessage("no floor below the camera: flying");
             return;
         }
         preferredMode_ = next;

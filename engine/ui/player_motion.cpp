@@ -20,7 +20,8 @@ MoveMode PlayerMotion::setCamera(const Camera& camera, MoveMode preferred) {
 bool PlayerMotion::setMode(MoveMode mode) {
     if (mode == mode_) return true;
     if (mode == MoveMode::Walk) {
-        if (!collision_) return false;
+        // Without a floor somewhere below (a model seen from outside), walking would fall forever.
+        if (!collision_ || !collision_->floorBelow(fly_.camera().position, kFloorSearchMetres)) return false;
         collision_->placeEye(fly_.camera().position);  // falls from here onto the floor below
     }
     mode_ = mode;

@@ -15,6 +15,7 @@ namespace glimmer::ui {
 constexpr double kMaxStepSeconds = 0.1;
 constexpr double kStallSeconds = 1.0;
 constexpr float kFastFactor = 4.0f;   // while the fast key (Shift) is held
+constexpr float kFloorSearchMetres = 1000.0f;
 
 enum class MoveMode { Fly, Walk };
 enum class MoveKey { Forward, Back, Left, Right, Up, Down, Fast };
@@ -27,7 +28,7 @@ public:
     // Jumps to a camera. Walking continues there only when the camera stands on a floor (its eye at standing
     // height above one), else the motion switches to flying; returns the mode in effect.
     MoveMode setCamera(const Camera& camera, MoveMode preferred);
-    // Walking needs collision; returns false (and stays flying) without it.
+    // Walking needs collision and a floor below the camera; returns false (and stays flying) without them.
     bool setMode(MoveMode mode);
     MoveMode mode() const { return mode_; }
     const Camera& camera() const { return fly_.camera(); }
