@@ -80,6 +80,20 @@ TEST(WindowWalk, WalkingIntoAWallStopsAtItAndAFallLandsOnTheFloor) {
     EXPECT_NEAR(r[3].position.y, r[1].position.y, 0.01f);  // fell back onto the floor
 }
 
+// Scene switching from the panel with the keyboard: focus the "Scene, camera, window" header (third focusable
+// row with smooth, which has no parameters), open it, step the scene selector: the atrium (last built-in)
+// wraps to plane90, whose camera looks down from 2 m and flies.
+TEST(WindowWalk, ThePanelSwitchesScenes) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
+    auto r = playScript("scene", "--scene atrium --env none --method smooth --size 320x180",
+                        "0.1 print\n0.2 press down\n0.2 press down\n0.2 press down\n0.5 press enter\n"
+                        "1.5 press right\n2.5 print\n2.6 quit\n");
+    ASSERT_EQ(r.size(), 2u);
+    EXPECT_EQ(r[0].mode, "walk");
+    EXPECT_EQ(r[1].position, glm::vec3(0.0f, 2.0f, 0.0f));
+    EXPECT_EQ(r[1].mode, "fly");
+}
+
 // The panel at the three window sizes: the screenshot has the window's size and the panel is drawn in its
 // place (its layout is checked in tests/panel_fit_test.cpp).
 void expectPanelDrawn(int w, int h) {
