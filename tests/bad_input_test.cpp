@@ -116,11 +116,12 @@ TEST(BadInput, HelpAndListingsSucceed) {
 
 TEST(RenderCommand, WritesPngAndExrAndPrintsStats) {
     std::string dir = glimmer::test::makeTempDir("render-ok");
-    glimmer::test::ProcessResult png = runGlimmer({"render", "--scene", "sphere", "--size", "64x48", "--out", dir + "/a.png"});
+    glimmer::test::ProcessResult png = runGlimmer({"render", "--scene", "sphere", "--method", "smooth", "--size", "64x48", "--out", dir + "/a.png"});
     ASSERT_EQ(png.exitCode, 0) << png.err;
     EXPECT_NE(png.out.find("a.png"), std::string::npos);
     glimmer::test::ProcessResult exr =
-        runGlimmer({"render", "--scene", "sphere", "--size", "64x48", "--stats", "--backend", "osmesa", "--out", dir + "/a.exr"});
+        runGlimmer({"render", "--scene", "sphere", "--method", "smooth", "--size", "64x48", "--stats", "--backend", "osmesa",
+                    "--out", dir + "/a.exr"});
     ASSERT_EQ(exr.exitCode, 0) << exr.err;
     nlohmann::json stats = nlohmann::json::parse(exr.out);
     EXPECT_EQ(stats["resolution"][0], 64);

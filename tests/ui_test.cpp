@@ -333,8 +333,15 @@ TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {
     WindowControls window;
     window.cameraNames = {"front", "side"};
     auto methods = fakeMethods();
+    // Each common parameter shows in its group's section (one section is open at a time).
+    for (const CommonParam& p : commonParams()) {
+        std::string group = p.spec.name.find('.') == std::string::npos ? "" : p.spec.name.substr(0, p.spec.name.find('.'));
+        ui.setOpenSection(kPanelId, commonGroupTitle(group));
+        panelFrame(ui, {}, settings, window, methods);
+        EXPECT_TRUE(ui.widgetRect(p.spec.name)) << p.spec.name;
+    }
+    ui.setOpenSection(kPanelId, commonGroupTitle("material"));
     panelFrame(ui, {}, settings, window, methods);
-    for (const CommonParam& p : commonParams()) EXPECT_TRUE(ui.widgetRect(p.spec.name)) << p.spec.name;
 
     const CommonParam* alpha = nullptr;
     for (const CommonParam& p : commonParams())
@@ -346,12 +353,16 @@ TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {
     ASSERT_TRUE(settings.isSet("material.alpha"));
     EXPECT_NEAR(settings.common_("material.alpha"), sliderValue(alpha->spec, 0.5f), 1e-6f);
 
+    ui.setOpenSection(kPanelId, commonGroupTitle(""));
+    panelFrame(ui, {}, settings, window, methods);
     Rect view = *ui.widgetRect("debug view");
     panelFrame(ui, clickAt(view.at(0.95f, 0.5f)), settings, window, methods);
     EXPECT_EQ(settings.debugView, 1);
 
-    Rect camera = *ui.widgetRect("2: camera side");
-    r = panelFrame(ui, clickAt(camera.at(0.5f, 0.5f)), settings, window, methods);
+    ui.setOpenSection(kPanelId, "Scene, camera, window");
+    panelFrame(ui, {}, settings, window, methods);
+    Rect camera = *ui.widgetRect("camera (1-9)");
+    r = panelFrame(ui, clickAt(camera.at(0.95f, 0.5f)), settings, window, methods);
     EXPECT_EQ(r.cameraRequested, 1);
     EXPECT_EQ(commonGroupTitle("material"), "Material overrides (all)");
     EXPECT_EQ(commonGroupTitle("zzz"), "zzz");

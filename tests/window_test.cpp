@@ -76,15 +76,15 @@ void expectWindowEqualsRender(const std::string& name, const std::string& sceneA
 
 TEST(Window, HiddenUiScreenshotEqualsGlimmerRender) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
-    expectWindowEqualsRender("sphere", "--scene sphere", 320, 240);
-    expectWindowEqualsRender("plane25", "--scene plane25 --set material.alpha=0.1 --set exposure=0.5", 320, 240);
+    expectWindowEqualsRender("sphere", "--scene sphere --method smooth", 320, 240);
+    expectWindowEqualsRender("plane25", "--scene plane25 --method smooth --set material.alpha=0.1 --set exposure=0.5", 320, 240);
 }
 
 TEST(Window, UiPanelAndStatsAreDrawnOverThePicture) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
     fs::path dir = outputDir();
     fs::path withUi = dir / "ui.png", withoutUi = dir / "noui.png";
-    std::string common = GLIMMER_EXECUTABLE " view --scene sphere --size 1280x720 --frames 3 ";
+    std::string common = GLIMMER_EXECUTABLE " view --scene sphere --method smooth --size 1280x720 --frames 3 ";
     ASSERT_EQ(test::runUnderXvfb(common + "--screenshot " + withUi.string() + " > /dev/null 2>&1"), 0);
     ASSERT_EQ(test::runUnderXvfb(common + "--hide-ui --screenshot " + withoutUi.string() + " > /dev/null 2>&1"), 0);
     ImageF ui = readImage(withUi), plain = readImage(withoutUi);
@@ -115,7 +115,7 @@ TEST(Window, BrokenShaderFailsAFramesRunWithFileAndLine) {
         out << "\nthis is not glsl;\n";
     }
     fs::path errors = outputDir() / "broken-shaders.err";
-    int code = test::runUnderXvfb(GLIMMER_EXECUTABLE " view --size 64x64 --frames 1 --shader-dir " + dir.string() +
+    int code = test::runUnderXvfb(GLIMMER_EXECUTABLE " view --scene sphere --size 64x64 --frames 1 --shader-dir " + dir.string() +
                                   " --screenshot " + (outputDir() / "never.png").string() + " > /dev/null 2> " +
                                   errors.string());
     EXPECT_EQ(code, 1);

@@ -12,14 +12,14 @@
 
 namespace glimmer {
 
-RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene) {
+RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene, const std::string& defaultMethod) {
     RenderRequest request;
     // Before the scene is read: glTF URIs that leave the model's folder are refused unless this is given.
     if (args.flag("--allow-outside-uris")) setAllowOutsideUris(true);
     request.scene = args.valueOr("--scene", defaultScene);
     request.camera = args.valueOr("--camera", "");
     request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));
-    request.settings.method = args.valueOr("--method", "smooth");
+    request.settings.method = args.valueOr("--method", defaultMethod);
     findGlintMethod(request.settings.method);
     request.settings.ibl = args.valueOr("--ibl", "prefiltered");
     checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);

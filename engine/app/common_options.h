@@ -7,7 +7,8 @@
 
 namespace glimmer {
 
-RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene);
+RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaultScene,
+                                      const std::string& defaultMethod = "smooth");
 std::string describeScenes();
 
 }  // namespace glimmer

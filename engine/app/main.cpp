@@ -16,13 +16,24 @@ static const char* kUsage =
     "  render   offscreen render to PNG/EXR (glimmer render --help)\n"
     "  view     the walkthrough window (glimmer view --help)\n"
     "  bench    time renders (glimmer bench --help)\n"
-    "  main     the window when a display exists, else an offscreen render of the default scene\n";
+    "  main     the window when a display exists, else an offscreen render of the default scene\n"
+    "  --version  print the version\n";
+
+static const char* kMainHelp =
+    "usage: glimmer main [view or render options]\n"
+    "  The default experience: the atrium with Deliot & Belcour 2023 glints. With a display it opens the\n"
+    "  walkthrough window (glimmer view --help lists its options and keys); without one it renders the 'court'\n"
+    "  camera at 1280x720 to glimmer-default.png (glimmer render --help). Options given replace these defaults.\n";
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h") {
         std::fputs(kUsage, args.empty() ? stderr : stdout);
         return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version" || args[0] == "-V") {
+        std::printf("glimmer %s\n", GLIMMER_VERSION);
+        return 0;
     }
     std::string command = args[0];
     args.erase(args.begin());
@@ -31,6 +42,10 @@ int main(int argc, char** argv) {
         if (command == "view") return glimmer::runViewCommand(args);
         if (command == "bench") return glimmer::runBenchCommand(args);
         if (command == "main") {
+            if (std::find(args.begin(), args.end(), "--help") != args.end()) {
+                std::fputs(kMainHelp, stdout);
+                return 0;
+            }
             // The default experience: the atrium with Deliot & Belcour glints (options given override these).
             auto given = [&](const char* flag) { return std::find(args.begin(), args.end(), flag) != args.end(); };
             std::vector<std::string> defaults;

@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "app/common_options.h"
+#include "app/render_path.h"
 #include "bench/compare.h"
 #include "core/cli.h"
 #include "core/atomic_file.h"
@@ -24,7 +25,12 @@ static const char* kRenderHelp =
     "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
     "                      [--allow-outside-uris] --out FILE.png|FILE.exr\n"
     "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
+    "       glimmer render --path CAMERA_PATH.json [--frames N] [--fps F] [scene/size/method options]\n"
+    "                      --out DIR/%04d.png [--video FILE.mp4|.gif|.webm]\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
+    "  --method defaults to deliot2023 (--method smooth: no glints).\n"
+    "  --path renders the camera path recorded in the window (R) at a fixed time step of 1/F s (default 30 fps;\n"
+    "  default N: the whole path); --video encodes the frames with the ffmpeg program.\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
     "  --env: environment map (default: the scene's, else the procedural sky). --ibl: how it is integrated\n"
     "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n"
@@ -41,9 +47,24 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     }
     if (args.flag("--list-scenes")) { std::fputs(describeScenes().c_str(), stdout); return 0; }
 
-    RenderRequest request = readCommonRenderOptions(args, "plane90");
+    RenderRequest request = readCommonRenderOptions(args, "plane90", "deliot2023");
     request.width = request.height = 512;
     if (auto size = args.value("--size")) parseSize(*size, "--size", request.width, request.height);
+    if (auto pathFile = args.value("--path")) {
+        PathRenderOptions path;
+        path.pathFile = *pathFile;
+        if (int frames = args.intValue("--frames", 0, 1, 1000000); frames > 0) path.frames = frames;
+        if (auto fps = args.value("--fps")) {
+            char* end = nullptr;
+            path.fps = std::strtod(fps->c_str(), &end);
+            if (fps->empty() || *end != '\0') throw UsageError("--fps: '" + *fps + "' is not a number");
+        }
+        path.outPattern = args.value("--out");
+        path.video = args.value("--video");
+        args.finish();
+        checkPathRenderOptions(path);
+        return renderPathSequence(request, path);
+    }
     bool printStats = args.flag("--stats");
     request.frames = args.intValue("--frames", 1, 1, 100000);
     auto out = args.value("--out");

@@ -11,25 +11,31 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
+#include "ui/input_script.h"
 
 namespace glimmer {
 
 static const char* kViewHelp =
     "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
-    "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--aov NAME]\n"
+    "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--spp N] [--aov NAME]\n"
     "                    [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
+    "                    [--path CAMERA_PATH.json] [--input-script FILE]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
-    "  WASD move, Q/E down/up, Shift faster, wheel speed, right mouse button (or C) looks around,\n"
-    "  1-9 scene cameras, P walkthrough, M/N/I cycle method/debug view/IBL mode, V vsync, H hide UI,\n"
-    "  B split-screen comparison (Shift+B: next right-hand method; drag the divider with the left button),\n"
+    "  Defaults: the atrium with deliot2023. Scenes whose camera stands on a floor start walking (eye 1.7 m,\n"
+    "  gravity, steps up to 0.35 m, collision); F toggles flying (free, no collision).\n"
+    "  WASD move, Q/E down/up (flying), Shift faster, wheel speed, right mouse button (or C) looks around,\n"
+    "  1-9 scene cameras, P plays the camera path (the recorded one, else the scene's cameras), R records a path\n"
+    "  (saved to --path, else <scene>.path.json beside the scene), M/N/I cycle method/debug view/IBL mode,\n"
+    "  V vsync, H hide UI, B split-screen comparison (Shift+B: next right-hand method; drag the divider),\n"
     "  Monte Carlo IBL modes accumulate samples while the camera is still.\n"
-    "  arrows + Enter drive the panel, F5 reload shaders, F12 screenshot (Shift+F12: EXR), Esc quit.\n";
+    "  arrows + Enter drive the panel, F5 reload shaders, F12 screenshot (Shift+F12: EXR), Esc quit.\n"
+    "  --input-script replays timed key events (see docs/window.md) for tests and recordings.\n";
 
 int runViewCommand(const std::vector<std::string>& argList) {
     ArgReader args("view", argList);
     if (args.flag("--help")) { std::fputs(kViewHelp, stdout); return 0; }
     ViewOptions options;
-    options.request = readCommonRenderOptions(args, "sphere");
+    options.request = readCommonRenderOptions(args, "atrium", "deliot2023");
     args.value("--backend");  // accepted for symmetry; the window always uses GLFW
     options.request.width = 1280;
     options.request.height = 720;
@@ -46,6 +52,11 @@ int runViewCommand(const std::vector<std::string>& argList) {
             throw UsageError("--split-at: '" + *at + "' is not a number in [0, 1]");
         if (!options.splitMethod) throw UsageError("--split-at: only with --split METHOD");
     }
+    if (auto script = args.value("--input-script")) {
+        ui::readInputScript(*script);  // a bad script fails here, before the window opens
+        options.inputScript = *script;
+    }
+    options.pathFile = args.value("--path");
     args.finish();
     if (options.screenshot) {
         imageFormatForPath(*options.screenshot, "--screenshot");

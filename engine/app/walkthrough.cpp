@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "core/clock.h"
@@ -22,6 +23,12 @@
 #include "scene/scene_loader.h"
 #include "ui/camera_controller.h"
 #include "ui/font.h"
+#include "ui/input_script.h"
+#include "ui/key_holds.h"
+#include "ui/player_motion.h"
+#include "ui/recorded_path.h"
+#include "scene/builtin_scenes.h"
+#include "scene/character_collision.h"
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
 #include "ui/ui_renderer.h"
@@ -30,7 +37,7 @@ namespace glimmer {
 namespace {
 
 constexpr float kLookRadiansPerPixel = 0.0025f;
-constexpr float kShiftSpeedFactor = 4.0f;
+constexpr float kWalkingSpeed = 1.8f;  // m/s, a brisk walk
 constexpr float kWheelSpeedFactor = 1.2f;
 constexpr double kMessageSeconds = 4.0;
 constexpr float kDividerGrabPixels = 6.0f;
@@ -122,9 +129,12 @@ public:
             splitFraction_ = std::clamp(options.splitPosition, 0.0f, 1.0f);
             split_ = true;
         }
-        fly_.set(start);
-        for (const Camera& c : baseScene_.cameras) controls_.cameraNames.push_back(c.name);
-        controls_.moveSpeed = std::clamp(glm::length(start.target - start.position) * 0.5f, 0.05f, 20.0f);
+        startScene(start);
+        if (options.inputScript) script_ = std::make_unique<ui::ScriptPlayer>(ui::readInputScript(*options.inputScript));
+        controls_.moveSpeed = preferredMode_ == ui::MoveMode::Walk
+                                  ? kWalkingSpeed
+                                  : std::clamp(glm::length(start.target - start.position) * 0.5f, 0.05f, 20.0f);
+
         controls_.vsync = options.vsync && options.frameLimit == 0;
         window_.setVsync(controls_.vsync);
         uiHidden_ = options.hideUi;
@@ -139,28 +149,38 @@ public:
     }
 
     int run() {
-        Stopwatch clock;
+        // One clock for frames, key holds and the input script: seconds since the first frame began.
+        double start = glfwGetTime();
+        double previous = 0.0;
         for (int frame = 0; !window_.shouldClose() && (options_.frameLimit == 0 || frame < options_.frameLimit);
              ++frame) {
             glfwPollEvents();
-            double dt = clock.elapsedMs() * 1e-3;
-            clock.restart();
+            double now = glfwGetTime() - start;
+            double dt = now - previous;
             frameMs_ = frame == 0 ? dt * 1e3 : frameMs_ * 0.9 + dt * 1e3 * 0.1;
-            now_ += dt;
+            now_ = now;
             int width = 0, height = 0;
             window_.framebufferSize(width, height);
             WindowEvents events = window_.takeEvents();
+            takeKeyChanges(events, start, now);
             if (width <= 0 || height <= 0) {  // minimised: wait for events instead of spinning
                 glfwWaitEventsTimeout(0.1);
                 continue;
             }
             pollShaderChanges();
             ui::Input uiInput = handleKeys(events, width, height);
+            uiInput.focusMove += std::exchange(pendingScriptInput_.focusMove, 0);
+            uiInput.adjust += std::exchange(pendingScriptInput_.adjust, 0);
+            uiInput.activate |= std::exchange(pendingScriptInput_.activate, false);
             buildUi(uiInput, width, height);
-            moveCamera(events, float(dt));
+            moveCamera(events, previous, now, width, height);
+            previous = now;
             drawFrame(width, height);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();
+            if (scriptQuit_ && scriptScreenshot_.empty()) window_.requestClose();  // after a pending screenshot
+            // The script's clock starts once the first frame (shader builds, environment precomputation) is done.
+            if (script_ && scriptOffset_ < 0.0) scriptOffset_ = glfwGetTime() - start;
         }
         return 0;
     }
@@ -203,6 +223,97 @@ private:
     }
 
     // ---- input ----
+    // Walking collides with the scene's triangles (Bullet BVH, built once here); a scene without any flies.
+    void buildCollision() {
+        Stopwatch clock;
+        try {
+            collision_ = std::make_unique<SceneCollision>(scene_);
+            log::info("view: collision mesh of ", collision_->triangleCount(), " triangles in ",
+                      formatMs(clock.elapsedMs()), " ms");
+        } catch (const std::exception& e) {
+            log::warn("view: no walking: ", e.what());
+        }
+    }
+
+    // Key presses and releases (window and input script) into the hold record; times relative to `start`.
+    void takeKeyChanges(WindowEvents& events, double start, double now) {
+        if (events.focusLost) keys_.releaseAll(now);
+        for (const WindowEvents::KeyChange& change : events.changes) {
+            if (change.down) keys_.press(change.key, change.seconds - start);
+            else keys_.release(change.key, change.seconds - start);
+        }
+    }
+
+    // One input-script event at frame-clock time `t`: keys go through the same paths as the window's.
+    void applyScriptEvent(const ui::ScriptEvent& e, double t, int width, int height) {
+        auto action = [&](int key) {
+            WindowEvents single;
+            single.keys.push_back({key, shiftHeld() ? GLFW_MOD_SHIFT : 0, false});
+            ui::Input input = handleKeys(single, width, height);
+            pendingScriptInput_.focusMove += input.focusMove;
+            pendingScriptInput_.adjust += input.adjust;
+            pendingScriptInput_.activate |= input.activate;
+        };
+        switch (e.kind) {
+        case ui::ScriptEvent::Kind::Down:
+            keys_.press(e.key, t);
+            action(e.key);
+            break;
+        case ui::ScriptEvent::Kind::Up: keys_.release(e.key, t); break;
+        case ui::ScriptEvent::Kind::Press:
+            keys_.press(e.key, t);
+            keys_.release(e.key, t);
+            action(e.key);
+            break;
+        case ui::ScriptEvent::Kind::Look:
+            motion_->turn(e.dx * kLookRadiansPerPixel, -e.dy * kLookRadiansPerPixel);
+            break;
+        case ui::ScriptEvent::Kind::Print: {
+            const glm::vec3& p = motion_->camera().position;
+            std::printf("time %.3f position %.4f %.4f %.4f mode %s speed %.4f\n", e.seconds, p.x, p.y, p.z,
+                        motion_->mode() == ui::MoveMode::Walk ? "walk" : "fly", double(controls_.moveSpeed));
+            std::fflush(stdout);
+            break;
+        }
+        case ui::ScriptEvent::Kind::Screenshot:
+            // Written at the end of the next frame, whose panel and stats strip have seen every earlier event.
+            scriptScreenshot_ = e.path;
+            scriptScreenshotDelay_ = 1;
+            break;
+        case ui::ScriptEvent::Kind::Quit: scriptQuit_ = true; break;
+        }
+    }
+
+    bool shiftHeld() const { return keys_.down(GLFW_KEY_LEFT_SHIFT) || keys_.down(GLFW_KEY_RIGHT_SHIFT); }
+
+    double heldSeconds(ui::MoveKey key, double from, double to) const {
+        auto held = [&](int k) { return keys_.heldSeconds(k, from, to); };
+        switch (key) {
+        case ui::MoveKey::Forward: return held(GLFW_KEY_W);
+        case ui::MoveKey::Back: return held(GLFW_KEY_S);
+        case ui::MoveKey::Left: return held(GLFW_KEY_A);
+        case ui::MoveKey::Right: return held(GLFW_KEY_D);
+        case ui::MoveKey::Up: return held(GLFW_KEY_E);
+        case ui::MoveKey::Down: return held(GLFW_KEY_Q);
+        case ui::MoveKey::Fast: return std::min(to - from, held(GLFW_KEY_LEFT_SHIFT) + held(GLFW_KEY_RIGHT_SHIFT));
+        }
+        return 0.0;
+    }
+
+    // F: walking (collision, gravity, standing eye height) or flying (free, through everything).
+    void toggleWalking() {
+        ui::MoveMode next = motion_->mode() == ui::MoveMode::Walk ? ui::MoveMode::Fly : ui::MoveMode::Walk;
+        stopWalkthrough();
+        if (!motion_->setMode(next)) {
+            showMessage("no floor below the camera: flying");
+            return;
+        }
+        preferredMode_ = next;
+        controls_.walking = next == ui::MoveMode::Walk;
+        if (controls_.walking && controls_.moveSpeed > 4.0f * kWalkingSpeed) controls_.moveSpeed = kWalkingSpeed;
+        showMessage(controls_.walking ? "walking (F flies)" : "flying (F walks)");
+    }
+
     ui::Input handleKeys(const WindowEvents& events, int width, int height) {
         ui::Input input;
         GLFWwindow* w = window_.glfwHandle();
@@ -233,6 +344,8 @@ private:
                 window_.setVsync(controls_.vsync);
                 break;
             case GLFW_KEY_P: toggleWalkthrough(); break;
+            case GLFW_KEY_F: toggleWalking(); break;
+            case GLFW_KEY_R: toggleRecording(); break;
             case GLFW_KEY_M: cycleMethod(shift ? -1 : 1); break;
             case GLFW_KEY_N: cycleDebugView(shift ? -1 : 1); break;
             case GLFW_KEY_B:
@@ -278,7 +391,7 @@ private:
         lookStarted_ = false;
     }
 
-    void moveCamera(const WindowEvents& events, float dt) {
+    void moveCamera(const WindowEvents& events, double from, double to, int width, int height) {
         GLFWwindow* w = window_.glfwHandle();
         // Right button held outside the panel: mouse look (the cursor is hidden while it is held).
         bool rightDown = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
@@ -295,7 +408,7 @@ private:
         window_.cursorPosition(cx, cy);
         if (captured_ || rightLook_) {
             if (lookStarted_ && (cx != lastCursor_.x || cy != lastCursor_.y)) {
-                fly_.turn(float(cx - lastCursor_.x) * kLookRadiansPerPixel, -float(cy - lastCursor_.y) * kLookRadiansPerPixel);
+                motion_->turn(float(cx - lastCursor_.x) * kLookRadiansPerPixel, -float(cy - lastCursor_.y) * kLookRadiansPerPixel);
                 stopWalkthrough();
             }
             lookStarted_ = true;
@@ -307,38 +420,160 @@ private:
             controls_.moveSpeed = std::clamp(controls_.moveSpeed * std::pow(kWheelSpeedFactor, float(events.scrollY)),
                                              speed.minValue, speed.maxValue);
         }
-        auto held = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
-        glm::vec3 direction{held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_E) - held(GLFW_KEY_Q),
-                            held(GLFW_KEY_W) - held(GLFW_KEY_S)};
-        if (direction != glm::vec3(0.0f)) {
-            float speed = controls_.moveSpeed;
-            if (held(GLFW_KEY_LEFT_SHIFT) + held(GLFW_KEY_RIGHT_SHIFT) > 0.0f) speed *= kShiftSpeedFactor;
-            fly_.move(glm::normalize(direction) * speed * dt);
-            stopWalkthrough();
-        }
-        if (controls_.walkthroughPlaying) {
-            walkthroughTime_ += dt;
-            fly_.set(path_->at(walkthroughTime_));
-            if (walkthroughTime_ >= path_->duration()) controls_.walkthroughPlaying = false;
-        }
+        // Script events apply at their own times, with the motion advanced exactly up to each one.
+        double at = from;
+        if (script_ && scriptOffset_ >= 0.0)
+            for (const ui::ScriptEvent& e : script_->due(to - scriptOffset_)) {
+                double t = std::max(at, e.seconds + scriptOffset_);
+                advanceTo(at, t);
+                at = t;
+                applyScriptEvent(e, t, width, height);
+            }
+        advanceTo(at, to);
+        keys_.forgetBefore(to);
     }
 
+    // Motion over [from, to]: the camera path while it plays, else the held keys (and recording).
+    void advanceTo(double from, double to) {
+        if (!(to > from)) return;
+        float dt = float(to - from);
+        bool keysHeld = false;
+        for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
+            keysHeld |= keys_.heldSeconds(key, from, to) > 0.0;
+        if (keysHeld) stopWalkthrough();
+        if (controls_.walkthroughPlaying) {
+            walkthroughTime_ += dt;
+            bool recorded = !recorded_.empty() && !controls_.recording;
+            motion_->setCamera(recorded ? recorded_.at(walkthroughTime_) : path_->at(walkthroughTime_), ui::MoveMode::Fly);
+            if (walkthroughTime_ >= (recorded ? float(recorded_.duration()) : path_->duration())) stopWalkthrough();
+        } else {
+            motion_->advance([&](ui::MoveKey key, double a, double b) { return heldSeconds(key, a, b); }, from, to,
+                             controls_.moveSpeed);
+        }
+        if (controls_.recording) recorded_.add(to - recordStart_, motion_->camera());
+    }
+
+    // P: the recorded (or --path) camera path when there is one, else the scene's cameras in order.
     void toggleWalkthrough() {
         if (controls_.walkthroughPlaying) { stopWalkthrough(); return; }
-        // The scene's cameras in order (an explicit walkthrough list on Scene would replace this).
+        if (controls_.recording) toggleRecording();
+        walkthroughTime_ = 0.0f;
+        if (!recorded_.empty()) {
+            controls_.walkthroughPlaying = true;
+            showMessage("path " + pathFile_.string() + ": " + formatMs(recorded_.duration()) + " s");
+            return;
+        }
         path_ = std::make_unique<ui::CameraPath>(baseScene_.cameras, std::max(controls_.moveSpeed, 0.2f));
         if (path_->empty()) return;
-        walkthroughTime_ = 0.0f;
         controls_.walkthroughPlaying = true;
         showMessage("walkthrough: " + std::to_string(baseScene_.cameras.size()) + " cameras, " +
                     formatMs(path_->duration()) + " s");
     }
-    void stopWalkthrough() { controls_.walkthroughPlaying = false; }
+
+    // R: starts recording the camera, or stops and saves the path as JSON (--path FILE, else beside the scene).
+    void toggleRecording() {
+        if (!controls_.recording) {
+            stopWalkthrough();
+            recorded_ = ui::RecordedPath();
+            recordStart_ = now_;
+            controls_.recording = true;
+            showMessage("recording a camera path (R stops)");
+            return;
+        }
+        controls_.recording = false;
+        controls_.hasRecordedPath = !recorded_.empty();
+        try {
+            recorded_.save(pathFile_, baseScene_.name);
+            log::info("view: wrote camera path ", pathFile_.string(), " (", recorded_.samples().size(), " samples)");
+            showMessage("wrote " + pathFile_.string());
+        } catch (const std::exception& e) {
+            log::error("view: ", e.what());
+            showMessage(e.what());
+        }
+    }
+
+    // Where a recorded path goes: --path FILE, else <scene>.path.json in the scene file's folder (the content
+    // folder for scenes described there, the current folder for generated ones).
+    std::filesystem::path defaultPathFile() const {
+        if (options_.pathFile) return *options_.pathFile;
+        std::filesystem::path scene(options_.request.scene);
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(scene, ec)) return scene.parent_path() / (scene.stem().string() + ".path.json");
+        if (std::filesystem::is_regular_file(defaultContentDir() / (baseScene_.name + ".json"), ec))
+            return defaultContentDir() / (baseScene_.name + ".path.json");
+        return baseScene_.name + ".path.json";
+    }
+
+    void loadRecordedPath() {
+        pathFile_ = defaultPathFile();
+        recorded_ = ui::RecordedPath();
+        std::error_code ec;
+        if (std::filesystem::exists(pathFile_, ec)) {
+            recorded_ = ui::RecordedPath::load(pathFile_);
+            log::info("view: camera path ", pathFile_.string(), " (", recorded_.samples().size(), " samples): P plays it");
+        }
+        controls_.hasRecordedPath = !recorded_.empty();
+    }
+
+    // The panel's scene selector: loads the scene, its collision mesh and cameras; settings stay.
+    void switchScene(const std::string& name) {
+        Scene loaded;
+        try {
+            loaded = loadScene(name);
+        } catch (const std::exception& e) {
+            showMessage(e.what());
+            return;
+        }
+        stopWalkthrough();
+        if (controls_.recording) toggleRecording();
+        baseScene_ = std::move(loaded);
+        if (options_.request.environment) baseScene_.environment = *options_.request.environment;
+        scene_ = baseScene_;
+        applySceneOverrides(renderer_->settings(), scene_);
+        gpuScene_ = std::make_unique<GpuScene>(scene_);
+        options_.request.scene = name;
+        options_.pathFile.reset();
+        startScene(baseScene_.cameras.front());
+        ++settingsVersion_;
+        glfwSetWindowTitle(window_.glfwHandle(), ("Glimmer - " + baseScene_.name).c_str());
+        showMessage("scene " + baseScene_.name);
+    }
+
+    // Collision, motion mode, camera list and camera path of the current scene, starting at `start`.
+    void startScene(const Camera& start) {
+        buildCollision();
+        motion_ = std::make_unique<ui::PlayerMotion>(collision_.get());
+        // Scripted input has exact times: no frame counts as a stall, so results do not depend on machine load.
+        if (options_.inputScript) motion_->setStallSeconds(std::numeric_limits<double>::infinity());
+        preferredMode_ = motion_->setCamera(start, ui::MoveMode::Walk);
+        controls_.walking = preferredMode_ == ui::MoveMode::Walk;
+        controls_.cameraNames.clear();
+        for (const Camera& c : baseScene_.cameras) controls_.cameraNames.push_back(c.name);
+        controls_.cameraIndex = 0;
+        for (size_t i = 0; i < baseScene_.cameras.size(); ++i)
+            if (baseScene_.cameras[i].name == start.name) controls_.cameraIndex = int(i);
+        controls_.sceneNames = builtinSceneNames();
+        auto it = std::find(controls_.sceneNames.begin(), controls_.sceneNames.end(), options_.request.scene);
+        if (it == controls_.sceneNames.end()) {
+            controls_.sceneNames.push_back(options_.request.scene);
+            it = controls_.sceneNames.end() - 1;
+        }
+        controls_.sceneIndex = int(it - controls_.sceneNames.begin());
+        loadRecordedPath();
+    }
+
+    void stopWalkthrough() {
+        if (!controls_.walkthroughPlaying) return;
+        controls_.walkthroughPlaying = false;
+        motion_->setCamera(motion_->camera(), preferredMode_);  // walks on from here if it stands on a floor
+    }
 
     void jumpToCamera(int index) {
         if (index < 0 || index >= int(baseScene_.cameras.size())) return;
         stopWalkthrough();
-        fly_.set(baseScene_.cameras[size_t(index)]);
+        motion_->setCamera(baseScene_.cameras[size_t(index)], preferredMode_);
+        controls_.cameraIndex = index;
+        controls_.walking = motion_->mode() == ui::MoveMode::Walk;
         showMessage("camera " + baseScene_.cameras[size_t(index)].name);
     }
 
@@ -428,7 +663,7 @@ private:
     }
 
     void buildUi(const ui::Input& input, int width, int height) {
-        int scale = height >= 600 ? 2 : 1;
+        int scale = ui::panelLayout(width, height, 0).scale;
         ui_.begin(input, width, height, scale);
         float line = ui_.lineHeight();
         float margin = float(4 * scale);
@@ -455,6 +690,10 @@ private:
             if (result.vsyncChanged) window_.setVsync(controls_.vsync);
             if (result.cameraRequested >= 0) jumpToCamera(result.cameraRequested);
             if (result.toggleWalkthrough) toggleWalkthrough();
+            if (result.toggleWalking) toggleWalking();
+            if (result.toggleRecording) toggleRecording();
+            if (result.sceneRequested >= 0 && result.sceneRequested != controls_.sceneIndex)
+                switchScene(controls_.sceneNames[size_t(result.sceneRequested)]);
             if (result.reloadShaders) reloadShaders({}, true);
             if (result.screenshot) pendingScreenshot_ = 1;
             drawStats(stats, width, height, statsHeight, margin, line);
@@ -495,7 +734,7 @@ private:
             lines.push_back({frame});
             lines.push_back({timers});
         }
-        const Camera& c = fly_.camera();
+        const Camera& c = motion_->camera();
         char where[160];
         std::snprintf(where, sizeof where, "pos %.2f %.2f %.2f  speed %.2g m/s  vsync %s  ibl %s%s%s", c.position.x,
                       c.position.y, c.position.z, double(controls_.moveSpeed), controls_.vsync ? "on" : "off",
@@ -539,7 +778,7 @@ private:
     // Monte Carlo IBL modes average their estimates while camera, size, scene and settings stay as they were;
     // any change starts a new mean.
     void updateAccumulation(int width, int height) {
-        glm::mat4 view = fly_.camera().view();
+        glm::mat4 view = motion_->camera().view();
         bool still = view == accumulatedView_ && width == accumulatedWidth_ && height == accumulatedHeight_ &&
                      accumulatedSettingsVersion_ == settingsVersion_;
         sampleIndex_ = still && renderer_->accumulating() ? sampleIndex_ + 1 : 0;
@@ -552,7 +791,7 @@ private:
 
     void drawFrame(int width, int height) {
         updateAccumulation(width, height);
-        renderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
+        renderer_->render(scene_, *gpuScene_, motion_->camera(), width, height);
         present_.resize(width, height);
         glBlitNamedFramebuffer(renderer_->targets().displayFramebuffer(), present_.framebuffer(), 0, 0, width, height,
                                0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -562,6 +801,10 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(present_.framebuffer(), 0, 0, 0, width, height, 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        if (!scriptScreenshot_.empty() && scriptScreenshotDelay_-- <= 0) {
+            writeScreenshot(scriptScreenshot_);
+            scriptScreenshot_.clear();
+        }
         if (pendingScreenshot_) {
             writeScreenshot(nextScreenshotName(pendingScreenshot_ == 2 ? ".exr" : ".png"));
             pendingScreenshot_ = 0;
@@ -585,7 +828,7 @@ private:
             return;
         }
         splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
-        splitRenderer_->render(scene_, *gpuScene_, fly_.camera(), width, height);
+        splitRenderer_->render(scene_, *gpuScene_, motion_->camera(), width, height);
         int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
         if (x < width)
             glBlitNamedFramebuffer(splitRenderer_->targets().displayFramebuffer(), present_.framebuffer(), x, 0, width,
@@ -631,13 +874,25 @@ private:
     PresentTarget present_;
     ui::Context ui_;
     ui::WindowControls controls_;
-    ui::FlyCamera fly_;
+    std::unique_ptr<SceneCollision> collision_;  // null for a scene without triangles
+    std::unique_ptr<ui::PlayerMotion> motion_;
+    ui::MoveMode preferredMode_ = ui::MoveMode::Walk;  // what F chose; cameras that do not stand on a floor fly
+    ui::KeyHolds keys_;
+    std::unique_ptr<ui::ScriptPlayer> script_;
+    std::string scriptScreenshot_;
+    int scriptScreenshotDelay_ = 0;
+    bool scriptQuit_ = false;
+    double scriptOffset_ = -1.0;     // frame-clock time of script time 0 (the end of the first frame)
+    ui::Input pendingScriptInput_;   // panel keys from the script, given to the panel next frame
     // Accumulation of Monte Carlo IBL modes (updateAccumulation).
     uint32_t sampleIndex_ = 0;
     uint64_t settingsVersion_ = 0, accumulatedSettingsVersion_ = ~uint64_t(0);
     glm::mat4 accumulatedView_{0.0f};
     int accumulatedWidth_ = 0, accumulatedHeight_ = 0;
     std::unique_ptr<ui::CameraPath> path_;
+    ui::RecordedPath recorded_;
+    std::filesystem::path pathFile_;
+    double recordStart_ = 0.0;
     float walkthroughTime_ = 0.0f;
     bool uiHidden_ = false, captured_ = false, rightLook_ = false, lookStarted_ = false, softwareRenderer_ = false;
     glm::dvec2 lastCursor_{0.0};

@@ -18,6 +18,8 @@ struct ViewOptions {
     // part shows request.settings.method, the right part `splitMethod`, both rendered every frame.
     std::optional<std::string> splitMethod;
     float splitPosition = 0.5f;             // divider as a fraction of the width
+    std::optional<std::string> inputScript; // --input-script: timed key events replayed (ui/input_script.h)
+    std::optional<std::string> pathFile;    // --path: camera path played by P and written by R
 };
 
 int runWalkthroughWindow(const ViewOptions& options);

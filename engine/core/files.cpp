@@ -17,9 +17,19 @@ std::string readTextFile(const std::filesystem::path& path) {
     return text.str();
 }
 
-static std::filesystem::path dirFromEnvOr(const char* variable, const char* fallback) {
+// $variable, else beside the running executable (an installed <prefix>/bin/glimmer finds
+// <prefix>/share/glimmer/<name>; a copied folder may hold <name> next to the executable), else the source tree
+// the build was configured from.
+static std::filesystem::path dirFromEnvOr(const char* variable, const char* name) {
     if (const char* value = std::getenv(variable); value && *value) return value;
-    return std::filesystem::path(GLIMMER_SOURCE_DIR) / fallback;
+    std::error_code ec;
+    std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        std::filesystem::path exeDir = exe.parent_path();
+        for (const std::filesystem::path& candidate : {exeDir / ".." / "share" / "glimmer" / name, exeDir / name})
+            if (std::filesystem::is_directory(candidate, ec)) return candidate.lexically_normal();
+    }
+    return std::filesystem::path(GLIMMER_SOURCE_DIR) / name;
 }
 
 std::filesystem::path defaultShaderDir() { return dirFromEnvOr("GLIMMER_SHADER_DIR", "shaders"); }

@@ -8,9 +8,10 @@ namespace glimmer {
 // Throws glimmer::Error naming the path when it cannot be read.
 std::string readTextFile(const std::filesystem::path& path);
 
-// The shaders folder: $GLIMMER_SHADER_DIR, else <source>/shaders as configured at build time.
+// The shaders folder: $GLIMMER_SHADER_DIR, else <exe dir>/../share/glimmer/shaders, else <exe dir>/shaders,
+// else <source>/shaders as configured at build time.
 std::filesystem::path defaultShaderDir();
-// The content folder (scene files): $GLIMMER_CONTENT_DIR, else <source>/content.
+// The content folder (scene files): $GLIMMER_CONTENT_DIR, else the same places with content/.
 std::filesystem::path defaultContentDir();
 
 }  // namespace glimmer

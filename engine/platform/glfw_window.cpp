@@ -50,6 +50,10 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool vis
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
         auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
         if (action == GLFW_PRESS || action == GLFW_REPEAT) self->events_.keys.push_back({key, mods, action == GLFW_REPEAT});
+        if (action != GLFW_REPEAT) self->events_.changes.push_back({key, action == GLFW_PRESS, glfwGetTime()});
+    });
+    glfwSetWindowFocusCallback(window_, [](GLFWwindow* w, int focused) {
+        if (!focused) static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w))->events_.focusLost = true;
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
         auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));

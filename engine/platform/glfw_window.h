@@ -19,6 +19,14 @@ struct WindowEvents {
         bool repeat; // auto-repeat of a held key
     };
     std::vector<Key> keys;
+    // Every press and release with its arrival time (glfwGetTime seconds), for held-key movement.
+    struct KeyChange {
+        int key;
+        bool down;
+        double seconds;
+    };
+    std::vector<KeyChange> changes;
+    bool focusLost = false;  // held keys are released: their release events go elsewhere
     bool leftPressed = false, rightPressed = false;
     double scrollY = 0.0;
 };

@@ -4,8 +4,20 @@
 
 #include "render/aov.h"
 #include "ibl/ibl_modes.h"
+#include "ui/font.h"
 
 namespace glimmer::ui {
+
+PanelLayout panelLayout(int width, int height, int statsLines) {
+    PanelLayout layout;
+    layout.scale = height >= 600 ? 2 : 1;
+    layout.margin = float(4 * layout.scale);
+    layout.x = layout.y = layout.margin;
+    float line = float((kCellHeight + 2) * layout.scale);
+    float statsHeight = float(statsLines) * line + 2.0f * layout.margin;
+    layout.maxHeight = float(height) - statsHeight - 2.0f * layout.margin;
+    return layout;
+}
 
 ParamSpec moveSpeedSpec() {
     ParamSpec spec;
@@ -33,7 +45,7 @@ static std::string prefixOf(const std::string& name) {
 PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls& window, float x, float y,
                           float maxHeight, const std::vector<GlintMethod>& methods) {
     PanelResult result;
-    ui.beginPanel("settings", x, y, kPanelWidthChars, maxHeight);
+    ui.beginPanel(kPanelId, x, y, kPanelWidthChars, maxHeight);
     ui.heading("GLIMMER  (H hides, arrows edit)");
 
     // Method selector and the method's own parameters, generated from its ParamSpec list.
@@ -43,41 +55,66 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         ids.push_back(methods[i].id);
         if (methods[i].id == settings.method) methodIndex = int(i);
     }
-    if (!ids.empty() && ui.selector("method", ids, methodIndex)) {
-        settings.method = ids[size_t(methodIndex)];
-        result.settingsChanged = result.methodChanged = true;
-    }
-    if (!methods.empty()) {
-        const GlintMethod& method = methods[size_t(methodIndex)];
-        ui.label(method.title);
-        if (method.params.empty()) ui.label("(no parameters)");
-        for (const ParamSpec& spec : method.params) {
-            float value = paramOr(settings.methodValues(method.id), spec);
-            Edit edit = ui.slider(spec.name, spec, value);
-            if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;
-            if (edit == Edit::Reset) settings.methods[method.id].erase(spec.name);
-            result.settingsChanged |= edit != Edit::None;
+    if (ui.section("Method (M)", true)) {
+        if (!ids.empty() && ui.selector("method", ids, methodIndex)) {
+            settings.method = ids[size_t(methodIndex)];
+            result.settingsChanged = result.methodChanged = true;
+        }
+        if (!methods.empty()) {
+            const GlintMethod& method = methods[size_t(methodIndex)];
+            ui.label(method.title);
+            if (method.params.empty()) ui.label("(no parameters)");
+            for (const ParamSpec& spec : method.params) {
+                float value = paramOr(settings.methodValues(method.id), spec);
+                Edit edit = ui.slider(spec.name, spec, value);
+                if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;
+                if (edit == Edit::Reset) settings.methods[method.id].erase(spec.name);
+                result.settingsChanged |= edit != Edit::None;
+            }
         }
     }
 
-    std::vector<std::string> views;
-    int viewIndex = 0;
-    for (const AovInfo& aov : aovTable()) {
-        if (aov.viewId == settings.debugView) viewIndex = int(views.size());
-        views.push_back(aov.name);
-    }
-    if (ui.selector("debug view", views, viewIndex)) {
-        settings.debugView = aovTable()[size_t(viewIndex)].viewId;
-        result.settingsChanged = true;
+    if (ui.section("Scene, camera, window")) {
+        if (!window.sceneNames.empty()) {
+            int sceneIndex = std::clamp(window.sceneIndex, 0, int(window.sceneNames.size()) - 1);
+            if (ui.selector("scene", window.sceneNames, sceneIndex)) result.sceneRequested = sceneIndex;
+        }
+        if (!window.cameraNames.empty()) {
+            int cameraIndex = std::clamp(window.cameraIndex, 0, int(window.cameraNames.size()) - 1);
+            if (ui.selector("camera (1-9)", window.cameraNames, cameraIndex)) result.cameraRequested = cameraIndex;
+        }
+        bool walking = window.walking;
+        if (ui.checkbox("walk, collide (F: fly)", walking)) result.toggleWalking = true;
+        ParamSpec speed = moveSpeedSpec();
+        if (ui.slider(speed.name, speed, window.moveSpeed) == Edit::Reset) window.moveSpeed = speed.defaultValue;
+        if (ui.button(window.walkthroughPlaying ? "stop path (P)" : (window.hasRecordedPath ? "play recorded path (P)" : "play walkthrough (P)")))
+            result.toggleWalkthrough = true;
+        if (ui.button(window.recording ? "stop recording (R)" : "record path (R)")) result.toggleRecording = true;
+        result.vsyncChanged = ui.checkbox("vsync (V)", window.vsync);
+        if (ui.button("reload shaders (F5)")) result.reloadShaders = true;
+        if (ui.button("screenshot (F12)")) result.screenshot = true;
     }
 
-    // Common parameters, grouped by prefix in the order the table first names each group.
+    // Common parameters, grouped by prefix in the order the table first names each group; the debug view
+    // belongs to the image group.
     std::vector<std::string> groups;
     for (const CommonParam& p : commonParams())
         if (std::find(groups.begin(), groups.end(), prefixOf(p.spec.name)) == groups.end())
             groups.push_back(prefixOf(p.spec.name));
     for (const std::string& group : groups) {
-        ui.heading(commonGroupTitle(group));
+        if (!ui.section(commonGroupTitle(group))) continue;
+        if (group.empty()) {
+            std::vector<std::string> views;
+            int viewIndex = 0;
+            for (const AovInfo& aov : aovTable()) {
+                if (aov.viewId == settings.debugView) viewIndex = int(views.size());
+                views.push_back(aov.name);
+            }
+            if (ui.selector("debug view", views, viewIndex)) {
+                settings.debugView = aovTable()[size_t(viewIndex)].viewId;
+                result.settingsChanged = true;
+            }
+        }
         for (const CommonParam& p : commonParams()) {
             if (prefixOf(p.spec.name) != group) continue;
             bool fromScene = p.sceneDefault && !settings.isSet(p.spec.name);
@@ -90,36 +127,27 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
     }
 
     // Environment integration: the IBL mode selector and the mode's own parameters (ibl/ibl_modes.h).
-    ui.heading("Environment integration (I)");
-    std::vector<std::string> modes;
-    int modeIndex = 0;
-    for (const IblMode& mode : iblModes()) {
-        if (mode.id == settings.ibl) modeIndex = int(modes.size());
-        modes.push_back(mode.id);
-    }
-    if (ui.selector("ibl", modes, modeIndex)) {
-        settings.ibl = modes[size_t(modeIndex)];
-        result.settingsChanged = result.methodChanged = true;
-    }
-    const IblMode& mode = iblModes()[size_t(modeIndex)];
-    for (const ParamSpec& spec : mode.params) {
-        float value = paramOr(settings.iblModeValues(mode.id), spec);
-        Edit edit = ui.slider("ibl." + spec.name, spec, value);
-        if (edit == Edit::Changed) settings.iblValues[mode.id][spec.name] = value;
-        if (edit == Edit::Reset) settings.iblValues[mode.id].erase(spec.name);
-        result.settingsChanged |= edit != Edit::None;
+    if (ui.section("Environment integration (I)")) {
+        std::vector<std::string> modes;
+        int modeIndex = 0;
+        for (const IblMode& mode : iblModes()) {
+            if (mode.id == settings.ibl) modeIndex = int(modes.size());
+            modes.push_back(mode.id);
+        }
+        if (ui.selector("ibl", modes, modeIndex)) {
+            settings.ibl = modes[size_t(modeIndex)];
+            result.settingsChanged = result.methodChanged = true;
+        }
+        const IblMode& mode = iblModes()[size_t(modeIndex)];
+        for (const ParamSpec& spec : mode.params) {
+            float value = paramOr(settings.iblModeValues(mode.id), spec);
+            Edit edit = ui.slider("ibl." + spec.name, spec, value);
+            if (edit == Edit::Changed) settings.iblValues[mode.id][spec.name] = value;
+            if (edit == Edit::Reset) settings.iblValues[mode.id].erase(spec.name);
+            result.settingsChanged |= edit != Edit::None;
+        }
     }
 
-    ui.heading("Window");
-    result.vsyncChanged = ui.checkbox("vsync (V)", window.vsync);
-    ParamSpec speed = moveSpeedSpec();
-    if (ui.slider(speed.name, speed, window.moveSpeed) == Edit::Reset) window.moveSpeed = speed.defaultValue;
-    for (size_t i = 0; i < window.cameraNames.size() && i < 9; ++i)
-        if (ui.button(std::to_string(i + 1) + ": camera " + window.cameraNames[i])) result.cameraRequested = int(i);
-    if (ui.button(window.walkthroughPlaying ? "stop walkthrough (P)" : "play walkthrough (P)"))
-        result.toggleWalkthrough = true;
-    if (ui.button("reload shaders (F5)")) result.reloadShaders = true;
-    if (ui.button("screenshot (F12)")) result.screenshot = true;
     ui.endPanel();
     return result;
 }

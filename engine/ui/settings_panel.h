@@ -16,21 +16,42 @@ namespace glimmer::ui {
 struct WindowControls {
     bool vsync = true;
     float moveSpeed = 1.0f;                 // metres per second
+    std::vector<std::string> sceneNames;    // scenes the panel can switch to
+    int sceneIndex = 0;
     std::vector<std::string> cameraNames;   // scene cameras, jumped to with keys 1..9
+    int cameraIndex = 0;                    // the camera last jumped to
     bool walkthroughPlaying = false;
+    bool walking = false;                   // walking (collision) or flying
+    bool recording = false;                 // a camera path is being recorded (R)
+    bool hasRecordedPath = false;           // P plays the recorded (or loaded) path instead of the cameras
 };
 
 struct PanelResult {
     bool settingsChanged = false;   // anything in RenderSettings (method, parameters, debug view)
     bool methodChanged = false;
     int cameraRequested = -1;       // index into cameraNames
+    int sceneRequested = -1;        // index into sceneNames
+    bool toggleRecording = false;
     bool toggleWalkthrough = false;
+    bool toggleWalking = false;
     bool reloadShaders = false;
     bool vsyncChanged = false;
     bool screenshot = false;
 };
 
 constexpr int kPanelWidthChars = 34;
+constexpr const char* kPanelId = "settings";
+
+// Where the window puts the panel: an integer text scale chosen by window height, the margin, and the height
+// left above a stats strip of `statsLines` lines (kMaxStatsLines at most).
+struct PanelLayout {
+    int scale = 1;
+    float margin = 4.0f;
+    float x = 4.0f, y = 4.0f, maxHeight = 0.0f;
+};
+constexpr int kMaxStatsLines = 4;
+PanelLayout panelLayout(int width, int height, int statsLines);
+
 // The speed slider's range (also used by the wheel).
 ParamSpec moveSpeedSpec();
 

@@ -14,6 +14,9 @@ size_t DrawList::fill(const Rect& rect, Color color) {
 }
 
 void DrawList::text(glm::vec2 topLeft, std::string_view text, Color color, int scale, float maxWidth) {
+    // Glyphs start on whole pixels: at a fractional origin the nearest-texel font lookup would drop or double
+    // columns ("ertrance" for "entrance").
+    topLeft = glm::floor(topLeft);
     for (size_t i = 0; i < text.size(); ++i) {
         float x = topLeft.x + float(i * kCellWidth * scale);
         if (maxWidth > 0.0f && x + float(kGlyphWidth * scale) > topLeft.x + maxWidth) break;
@@ -88,8 +91,11 @@ void Context::begin(const Input& input, int screenWidth, int screenHeight, int s
     scale_ = std::max(1, scale);
     draw_.clear();
     layout_.clear();
+    panelAreas_.clear();
     mouseOverUi_ = false;
     if (!input_.mouseDown) active_.clear();
+    for (const auto& [panel, section] : pendingSection_) openSection_[panel] = section;
+    pendingSection_.clear();
     lastFocusableCount_ = focusableCount_;
     focusableCount_ = 0;
     if (input_.focusMove != 0 && lastFocusableCount_ > 0) {
@@ -131,6 +137,7 @@ void Context::endPanel() {
     }
     scroll = std::clamp(scroll, 0.0f, maxScroll);
     draw_.quads()[p.backgroundQuad].rect = background;
+    panelAreas_[p.id] = background;
     panel_.reset();
 }
 
@@ -174,6 +181,49 @@ void Context::heading(std::string_view text) {
     panel_->cursor += float(2 * scale_);
     if (nextRow(lineHeight(), row)) draw_.text({row.x, row.y + float(scale_)}, text, palette::kHeading, scale_, row.w);
     layout_.emplace_back(std::string(text), row);
+}
+
+std::optional<Rect> Context::panelArea(const std::string& id) const {
+    auto it = panelAreas_.find(id);
+    if (it == panelAreas_.end()) return std::nullopt;
+    return it->second;
+}
+
+std::string Context::openSection(const std::string& panelId) const {
+    auto it = openSection_.find(panelId);
+    return it == openSection_.end() ? std::string() : it->second;
+}
+
+void Context::setOpenSection(const std::string& panelId, const std::string& text) { openSection_[panelId] = text; }
+
+bool Context::section(std::string_view text, bool openByDefault) {
+    if (!panel_) return false;
+    std::string name(text);
+    auto state = openSection_.find(panel_->id);
+    if (state == openSection_.end() && openByDefault) state = openSection_.emplace(panel_->id, name).first;
+    bool open = state != openSection_.end() && state->second == name;
+    std::string shown = (open ? "- " : "+ ") + name;
+    Rect row;
+    float contentY = panel_->cursor;
+    panel_->cursor += float(scale_);
+    bool visible = nextRow(rowHeight(), row);
+    layout_.emplace_back(shown, row);
+    bool focused;
+    focusable(widgetId(text), focused);
+    int index = focusableCount_ - 1;
+    bool toggled = false;
+    if (visible && input_.mousePressed && hovered(row)) { toggled = true; focus_ = index; focused = true; }
+    if (focused && input_.activate) toggled = true;
+    if (focused) { panel_->focusTop = contentY; panel_->focusBottom = contentY + row.h; }
+    // Applied at the next begin(): sections above this one were laid out already this frame, and opening this
+    // one now would show two open sections (too tall for the window) for a frame.
+    if (toggled) pendingSection_[panel_->id] = open ? std::string() : name;
+    if (visible) {
+        draw_.fill(row, hovered(row) ? palette::kRowHover : palette::kPanel);
+        draw_.text({row.x + float(2 * scale_), textTop(row, scale_)}, shown, palette::kHeading, scale_, row.w);
+        if (focused) outline(draw_, row, palette::kFocus, float(scale_));
+    }
+    return open;
 }
 
 void Context::label(std::string_view text, Color color) {

@@ -102,6 +102,13 @@ public:
     void endPanel();
 
     void heading(std::string_view text);
+    // A collapsible section header ("+ text" closed, "- text" open). One section of a panel is open at a time
+    // (opening one closes the others), so a panel of sections fits a small window; `openByDefault` names the
+    // section open until the user picks another. Returns whether this section's widgets should follow.
+    bool section(std::string_view text, bool openByDefault = false);
+    // The open section of panel `panelId` ("" when all are closed or none was shown yet); setOpenSection opens one.
+    std::string openSection(const std::string& panelId) const;
+    void setOpenSection(const std::string& panelId, const std::string& text);
     void label(std::string_view text, Color color = palette::kDim);
     bool button(std::string_view text);
     bool checkbox(std::string_view text, bool& value);
@@ -125,6 +132,9 @@ public:
     float rowHeight() const;    // height of a widget row
     // Where the widget labelled `text` was laid out this frame (for tests and tools).
     std::optional<Rect> widgetRect(std::string_view text) const;
+    // Every widget laid out this frame (label, rectangle), in order; the panel's visible area.
+    const std::vector<std::pair<std::string, Rect>>& layout() const { return layout_; }
+    std::optional<Rect> panelArea(const std::string& id) const;
     int focusIndex() const { return focus_; }
 
 private:
@@ -151,6 +161,9 @@ private:
     bool mouseOverUi_ = false;
     int focus_ = -1, focusableCount_ = 0, lastFocusableCount_ = 0;
     std::vector<std::pair<std::string, Rect>> layout_;
+    std::map<std::string, std::string> openSection_;  // panel id -> open section ("" = all closed)
+    std::map<std::string, std::string> pendingSection_;  // a header clicked this frame, applied at begin()
+    std::map<std::string, Rect> panelAreas_;
 };
 
 }  // namespace glimmer::ui

@@ -23,13 +23,13 @@ static std::string slurp(const std::string& path) {
     return s.str();
 }
 
-int runUnderXvfb(const std::string& command) {
+int runUnderXvfb(const std::string& command, const std::string& screen) {
     static int counter = 0;
     std::string codePath =
         (testOutputDir() / ("xvfb-" + std::to_string(getpid()) + "-" + std::to_string(counter++) + ".status")).string();
     std::filesystem::remove(codePath);
     // The command goes to sh as one single-quoted argument: it must not contain single quotes itself.
-    std::string wrapped = "xvfb-run -a -s \"-screen 0 1280x720x24\" sh -c '" + command + "; echo $? > " + codePath +
+    std::string wrapped = "xvfb-run -a -s \"-screen 0 " + screen + "\" sh -c '" + command + "; echo $? > " + codePath +
                           "' > /dev/null 2>&1";
     int status = std::system(wrapped.c_str());
     std::ifstream in(codePath);

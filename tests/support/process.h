@@ -17,7 +17,7 @@ ProcessResult runGlimmer(const std::vector<std::string>& args, const std::vector
 // Runs a shell command (with its own redirections) under `xvfb-run -a` with a 1280x720 screen and returns the
 // command's exit status. xvfb-run's own status can be its cleanup's (5: its temporary directory could not be
 // removed, seen once in CI under ctest -j2), so the command's status is recorded in a file and returned instead.
-int runUnderXvfb(const std::string& command);
+int runUnderXvfb(const std::string& command, const std::string& screen = "1280x720x24");
 
 // The shared assets folder, or "" when absent (tests that need it skip).
 std::string sharedAssetsDir();

@@ -1,0 +1,123 @@
+#include "app/render_path.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/log.h"
+#include "ui/recorded_path.h"
+
+namespace glimmer {
+namespace fs = std::filesystem;
+
+std::string framePath(const std::string& pattern, int index) {
+    static const std::regex field("%0?[0-9]*d");
+    auto begin = std::sregex_iterator(pattern.begin(), pattern.end(), field);
+    size_t fields = size_t(std::distance(begin, std::sregex_iterator()));
+    size_t percents = size_t(std::count(pattern.begin(), pattern.end(), '%'));
+    if (fields != 1 || percents != 1)
+        throw UsageError("--out: '" + pattern + "' needs exactly one frame-number field such as %04d");
+    char text[4096];
+    std::snprintf(text, sizeof text, pattern.c_str(), index);
+    return text;
+}
+
+// The program's full path when it is on PATH, else "".
+static std::string findProgram(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "";
+    size_t start = 0;
+    while (start <= dirs.size()) {
+        size_t end = dirs.find(':', start);
+        std::string dir = dirs.substr(start, end == std::string::npos ? std::string::npos : end - start);
+        fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+        if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return candidate.string();
+        if (end == std::string::npos) break;
+        start = end + 1;
+    }
+    return "";
+}
+
+void checkPathRenderOptions(const PathRenderOptions& options) {
+    if (!(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps: expected a rate in (0, 1000]");
+    if (!options.outPattern && !options.video) throw UsageError("render --path: --out DIR/%04d.png or --video FILE is required");
+    if (options.outPattern) {
+        std::string first = framePath(*options.outPattern, 0);
+        if (imageFormatForPath(first, "--out") != ImageFormat::Png && options.video)
+            throw UsageError("--video: frames must be .png (--out)");
+        fs::path parent = fs::absolute(first).parent_path();
+        if (!fs::is_directory(parent)) throw Error("--out: directory " + parent.string() + " does not exist");
+    }
+    if (options.video) {
+        if (findProgram("ffmpeg").empty())
+            throw Error("--video: the ffmpeg program is not installed (Debian: apt-get install ffmpeg)");
+        fs::path parent = fs::absolute(*options.video).parent_path();
+        if (!fs::is_directory(parent)) throw Error("--video: directory " + parent.string() + " does not exist");
+    }
+}
+
+static void encodeVideo(const std::string& pattern, double fps, const std::string& video) {
+    std::string ffmpeg = findProgram("ffmpeg");
+    std::string rate = std::to_string(fps);
+    std::vector<std::string> args = {ffmpeg, "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern};
+    std::string extension = fs::path(video).extension().string();
+    // H.264 in yuv420p plays everywhere (needs even sizes: pad by one pixel when odd); GIF and WebM as ffmpeg's
+    // defaults for the extension.
+    if (extension == ".mp4" || extension == ".mkv" || extension == ".mov")
+        args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});
+    args.push_back(video);
+    pid_t pid = fork();
+    if (pid < 0) throw Error("--video: cannot start ffmpeg");
+    if (pid == 0) {
+        std::vector<char*> argv;
+        for (std::string& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        execv(ffmpeg.c_str(), argv.data());
+        _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("--video: ffmpeg failed writing " + video);
+}
+
+int renderPathSequence(RenderRequest request, const PathRenderOptions& options) {
+    ui::RecordedPath path = ui::RecordedPath::load(options.pathFile);
+    int frames = options.frames.value_or(int(std::floor(path.duration() * options.fps + 1e-9)) + 1);
+    // Frames for a video alone go to a temporary folder that is removed afterwards.
+    fs::path temporary;
+    std::string pattern;
+    if (options.outPattern) {
+        pattern = *options.outPattern;
+    } else {
+        temporary = fs::temp_directory_path() / ("glimmer-frames-" + std::to_string(::getpid()));
+        fs::create_directories(temporary);
+        pattern = (temporary / "%05d.png").string();
+    }
+    request.frames = 1;
+    request.cameraOverride = path.at(0.0);
+    OffscreenSession session(request);
+    for (int i = 0; i < frames; ++i) {
+        // A fixed time step: frame i shows the path at i / fps seconds whatever the render took.
+        request.cameraOverride = path.at(double(i) / options.fps);
+        RenderResult result = session.render(request);
+        std::string file = framePath(pattern, i);
+        if (imageFormatForPath(file, "--out") == ImageFormat::Exr) writeExr(file, result.hdr.data(), result.width, result.height);
+        else writePng(file, result.display.data(), result.width, result.height);
+        if (options.outPattern) std::printf("%s\n", file.c_str());
+    }
+    if (options.video) {
+        encodeVideo(pattern, options.fps, *options.video);
+        std::printf("%s\n", options.video->c_str());
+    }
+    if (!temporary.empty()) fs::remove_all(temporary);
+    log::info("render: ", frames, " frames along ", options.pathFile, " (", path.duration(), " s at ", options.fps, " fps)");
+    return 0;
+}
+
+}  // namespace glimmer
