@@ -247,7 +247,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glViewport(0, 0, width, height);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 
-    // G-buffer: reversed-Z (clear 0, GREATER passes), no blending, no culling (glTF double-sided surfaces).
+    // G-buffer: reversed-Z (clear 0, GREATER passes), no blending; GpuScene culls frustum chunks and, on
+    // single-sided materials, back faces.
     if (!blendSample) {
         beginPass("gbuffer");
         glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbufferFramebuffer());
@@ -255,13 +256,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
         const float zero[4] = {0, 0, 0, 0};
         for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i) glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_COLOR, i, zero);
         float clearDepth = 0.0f;
         glClearNamedFramebufferfv(targets_.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
         gbufferProgram_.use();
-        gpuScene.drawInstances(scene);
+        gpuScene.drawInstances(scene, frame.viewProjection);
         endPass("gbuffer");
     }
 
