@@ -51,6 +51,8 @@ public:
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture_.id(), 0);
     }
     GLuint framebuffer() const { return framebuffer_.id(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
     std::vector<uint8_t> read() const {
         std::vector<uint8_t> pixels(size_t(width_) * height_ * 4);
         glGetTextureImage(texture_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
@@ -633,8 +635,8 @@ private:
             std::vector<float> hdr = renderer_->readHdr();
             writeExr(path, hdr.data(), width, height);
         } else {
-            std::vector<uint8_t> pixels = present_.read();
-            writePng(path, pixels.data(), width, height);
+            std::vector<uint8_t> pixels = present_.read();   // the window image, window size (render scale < 1)
+            writePng(path, pixels.data(), present_.width(), present_.height());
         }
         if (options_.frameLimit > 0) std::printf("%s\n", path.c_str());
         log::info("view: wrote ", path);

@@ -32,7 +32,10 @@ bool DynamicResolution::addFrame(double frameMs) {
     bool tooSlow = median > targetMs, headroom = median < double(kRaiseBelow) * targetMs;
     if (!tooSlow && !headroom) return false;
     if ((tooSlow && scale_ <= kMinScale) || (headroom && scale_ >= kMaxScale)) return false;
-    float wanted = scale_ * float(std::sqrt(double(kAim) * targetMs / median));
+    // Lowering assumes frame time ~ scale (the part that does not scale makes scale^2 under-correct and settle at
+    // the band's edge); raising assumes ~ scale^2, the cautious direction, so a raise does not overshoot.
+    double ratio = double(kAim) * targetMs / median;
+    float wanted = scale_ * float(tooSlow ? ratio : std::sqrt(ratio));
     float next = std::clamp(wanted, scale_ * (1.0f - kMaxStep), scale_ * (1.0f + kMaxStep));
     next = std::clamp(next, kMinScale, kMaxScale);
     if (next == scale_) return false;

@@ -4,8 +4,9 @@
 //     kSettleFrames frames at the current scale, so the frames it judges were rendered at that scale;
 //   - dead band: it lowers the scale when the median exceeds the target frame time, raises it only when the median
 //     is under kRaiseBelow x the target, and holds in between (hysteresis: no oscillation around the target);
-//   - a change aims at kAim x the target assuming frame time ~ pixels ~ scale^2, limited to kMaxStep per change
-//     (smooth; the geometry-bound part of a frame does not scale, so it converges in a few steps).
+//   - a change aims at kAim x the target, limited to kMaxStep per change (smooth); lowering assumes frame time
+//     ~ scale (the geometry-bound part does not scale, so the pixel model scale^2 would under-correct), raising
+//     assumes frame time ~ pixels ~ scale^2 (cautious, no overshoot above the target).
 #pragma once
 #include <vector>
 
