@@ -20,9 +20,15 @@ static const char* kViewHelp =
     "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--spp N] [--aov NAME]\n"
     "                    [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
     "                    [--path CAMERA_PATH.json] [--input-script FILE]\n"
+    "                    [--render-scale F] [--target-fps FPS] [--walkthrough] [--stats]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
     "  Defaults: the atrium with deliot2023. Scenes whose camera stands on a floor start walking (eye 1.7 m,\n"
     "  gravity, steps up to 0.35 m, collision); F toggles flying (free, no collision).\n"
+    "  --render-scale F   render at F x the window (0.25 .. 1), upscaled (Catmull-Rom) for display\n"
+    "  --target-fps FPS   adapt the render scale to hold FPS (0: fixed scale); default 12 on software\n"
+    "                     renderers (llvmpipe), off on GPUs\n"
+    "  --walkthrough      play the camera path (key P) from the first frame\n"
+    "  --stats            print frame times (median, p95) as JSON at exit\n"
     "  WASD move, Q/E down/up (flying), Shift faster, wheel speed, right mouse button (or C) looks around,\n"
     "  1-9 scene cameras, P plays the camera path (the recorded one, else the scene's cameras), R records a path\n"
     "  (saved to --path, else <scene>.path.json beside the scene), M/N/I cycle method/debug view/IBL mode,\n"
@@ -44,6 +50,22 @@ int runViewCommand(const std::vector<std::string>& argList) {
     options.screenshot = args.value("--screenshot");
     options.hideUi = args.flag("--hide-ui");
     options.vsync = !args.flag("--no-vsync");
+    auto readFloat = [&](const char* flag, float lo, float hi) -> std::optional<float> {
+        auto text = args.value(flag);
+        if (!text) return std::nullopt;
+        char* end = nullptr;
+        float v = std::strtof(text->c_str(), &end);
+        if (text->empty() || *end != '\0' || !(v >= lo && v <= hi)) {
+            char range[64];
+            std::snprintf(range, sizeof range, "[%g, %g]", double(lo), double(hi));
+            throw UsageError(std::string(flag) + ": '" + *text + "' is not a number in " + range);
+        }
+        return v;
+    };
+    options.renderScale = readFloat("--render-scale", 0.25f, 1.0f);
+    options.targetFps = readFloat("--target-fps", 0.0f, 1000.0f);
+    options.playWalkthrough = args.flag("--walkthrough");
+    options.printStats = args.flag("--stats");
     if (auto split = args.value("--split")) options.splitMethod = findGlintMethod(*split).id;
     if (auto at = args.value("--split-at")) {
         char* end = nullptr;

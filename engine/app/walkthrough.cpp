@@ -1,4 +1,5 @@
 #include "app/walkthrough.h"
+#include "app/window_resolution.h"
 
 #include <glad/gl.h>
 #include <GLFW/glfw3.h>
@@ -57,6 +58,8 @@ public:
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture_.id(), 0);
     }
     GLuint framebuffer() const { return framebuffer_.id(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
     std::vector<uint8_t> read() const {
         std::vector<uint8_t> pixels(size_t(width_) * height_ * 4);
         glGetTextureImage(texture_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
@@ -142,6 +145,9 @@ public:
         softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
                             rendererName.find("softpipe") != std::string::npos;
         log::info("view: ", rendererName, ", ", window_.versionString());
+        resolution_ = std::make_unique<WindowResolution>(shaderRoot, softwareRenderer_, options.screenshot.has_value(),
+                                                         options.renderScale, options.targetFps);
+        if (options.playWalkthrough) toggleWalkthrough();
     }
 
     ~Walkthrough() {
@@ -159,6 +165,7 @@ public:
             double dt = now - previous;
             frameMs_ = frame == 0 ? dt * 1e3 : frameMs_ * 0.9 + dt * 1e3 * 0.1;
             now_ = now;
+            if (frame >= 2) resolution_->addFrame(dt * 1e3);   // frame 0 builds shaders and the environment
             int width = 0, height = 0;
             window_.framebufferSize(width, height);
             WindowEvents events = window_.takeEvents();
@@ -182,7 +189,22 @@ public:
             // The script's clock starts once the first frame (shader builds, environment precomputation) is done.
             if (script_ && scriptOffset_ < 0.0) scriptOffset_ = glfwGetTime() - start;
         }
+        if (options_.printStats) printStats();
         return 0;
+    }
+
+    void printStats() const {
+        nlohmann::json stats = resolution_->statsJson();
+        stats["scene"] = baseScene_.name;
+        stats["camera"] = options_.request.camera;
+        stats["method"] = renderer_->settings().method;
+        int w = 0, h = 0;
+        window_.framebufferSize(w, h);
+        stats["window"] = {w, h};
+        stats["gl_renderer"] = window_.rendererString();
+        stats["walkthrough"] = options_.playWalkthrough;
+        stats["vsync"] = controls_.vsync;
+        std::printf("%s\n", stats.dump().c_str());
     }
 
 private:
@@ -723,7 +745,8 @@ private:
     std::vector<StatsLine> statsText(float available) const {
         std::vector<StatsLine> lines;
         std::string frame = "frame " + formatMsShort(frameMs_) + " ms (" +
-                            std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) + " fps)";
+                            std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) + " fps) " +
+                            resolution_->statsText();
         std::string timers = "GPU ms:";
         for (const PassTiming& t : renderer_->passTimings())   // NaN: no plausible result (render/passes/pass_timer.h)
             timers += " " + t.name + " " + (std::isnan(t.gpuMs) ? std::string("n/a") : formatMsShort(t.gpuMs));
@@ -790,11 +813,12 @@ private:
     }
 
     void drawFrame(int width, int height) {
-        updateAccumulation(width, height);
-        renderer_->render(scene_, *gpuScene_, motion_->camera(), width, height);
+        int renderW = width, renderH = height;
+        resolution_->internalSize(width, height, renderW, renderH);
+        updateAccumulation(renderW, renderH);
+        renderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
         present_.resize(width, height);
-        glBlitNamedFramebuffer(renderer_->targets().displayFramebuffer(), present_.framebuffer(), 0, 0, width, height,
-                               0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        resolution_->present(*renderer_, present_.framebuffer(), width, height);
         if (split_) drawSplit(width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, present_.framebuffer());
         uiRenderer_->draw(ui_.drawList(), width, height);
@@ -828,11 +852,11 @@ private:
             return;
         }
         splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
-        splitRenderer_->render(scene_, *gpuScene_, motion_->camera(), width, height);
+        int renderW = width, renderH = height;
+        resolution_->internalSize(width, height, renderW, renderH);
+        splitRenderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
         int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
-        if (x < width)
-            glBlitNamedFramebuffer(splitRenderer_->targets().displayFramebuffer(), present_.framebuffer(), x, 0, width,
-                                   height, x, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        resolution_->present(*splitRenderer_, present_.framebuffer(), width, height, x);
         const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glEnable(GL_SCISSOR_TEST);
         glScissor(std::max(x - 1, 0), 0, 2, height);
@@ -855,8 +879,8 @@ private:
             std::vector<float> hdr = renderer_->readHdr();
             writeExr(path, hdr.data(), width, height);
         } else {
-            std::vector<uint8_t> pixels = present_.read();
-            writePng(path, pixels.data(), width, height);
+            std::vector<uint8_t> pixels = present_.read();   // the window image, window size (render scale < 1)
+            writePng(path, pixels.data(), present_.width(), present_.height());
         }
         if (options_.frameLimit > 0) std::printf("%s\n", path.c_str());
         log::info("view: wrote ", path);
@@ -871,6 +895,7 @@ private:
     std::unique_ptr<Renderer> splitRenderer_;  // created on the first split frame
     std::unique_ptr<ui::UiRenderer> uiRenderer_;
     std::unique_ptr<FileWatcher> watcher_;
+    std::unique_ptr<WindowResolution> resolution_;
     PresentTarget present_;
     ui::Context ui_;
     ui::WindowControls controls_;

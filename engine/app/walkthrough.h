@@ -20,6 +20,12 @@ struct ViewOptions {
     float splitPosition = 0.5f;             // divider as a fraction of the width
     std::optional<std::string> inputScript; // --input-script: timed key events replayed (ui/input_script.h)
     std::optional<std::string> pathFile;    // --path: camera path played by P and written by R
+    // Resolution (render/dynamic_resolution.h): unset = defaults (software renderers: target 12 fps with dynamic
+    // resolution from scale 0.5, except for --screenshot runs, which stay at scale 1; GPUs: scale 1).
+    std::optional<float> renderScale;       // --render-scale: start (or fixed) scale in [0.25, 1]
+    std::optional<float> targetFps;         // --target-fps: > 0 adapts the scale, 0 keeps it fixed
+    bool printStats = false;                // --stats: frame-time JSON on stdout at exit
+    bool playWalkthrough = false;           // --walkthrough: play the camera path (key P) from the first frame
 };
 
 int runWalkthroughWindow(const ViewOptions& options);

@@ -42,9 +42,12 @@ GpuScene::GpuScene(const Scene& scene) {
             vertices[i].uv = i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f);
         }
         MeshBuffers buffers;
+        ChunkedIndices chunked = buildMeshChunks(mesh.indices, mesh.positions);
         buffers.vertices = gl::createBuffer(GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
-        buffers.indices = gl::createBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0);
-        buffers.indexCount = GLsizei(mesh.indices.size());
+        buffers.indices = gl::createBuffer(GLsizeiptr(std::max<size_t>(chunked.indices.size(), 1) * sizeof(uint32_t)),
+                                           chunked.indices.empty() ? nullptr : chunked.indices.data(), 0);
+        buffers.indexCount = GLsizei(chunked.indices.size());
+        buffers.chunks = std::move(chunked.chunks);
         GLuint vao = 0;
         glCreateVertexArrays(1, &vao);
         glVertexArrayVertexBuffer(vao, 0, buffers.vertices.id(), 0, sizeof(Vertex));
@@ -81,11 +84,42 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
 }
 
-void GpuScene::drawInstances(const Scene& scene) const {
+void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
+    drawStats_ = {};
     for (const Instance& instance : scene.instances) {
+        const MeshBuffers& mesh = meshes_[instance.mesh];
+        // Visible chunks; consecutive ones merge into one range (they are adjacent in the index buffer).
+        const glm::mat4 clipFromMesh = viewProjection * instance.transform;
+        drawCounts_.clear();
+        drawOffsets_.clear();
+        uint32_t rangeEnd = ~0u;
+        for (const MeshChunk& chunk : mesh.chunks) {
+            drawStats_.chunksTotal += 1;
+            drawStats_.trianglesTotal += chunk.indexCount / 3;
+            if (boxOutsideFrustum(clipFromMesh, chunk.boundsMin, chunk.boundsMax)) continue;
+            drawStats_.chunksDrawn += 1;
+            drawStats_.trianglesDrawn += chunk.indexCount / 3;
+            if (chunk.firstIndex == rangeEnd) {
+                drawCounts_.back() += GLsizei(chunk.indexCount);
+            } else {
+                drawCounts_.push_back(GLsizei(chunk.indexCount));
+                drawOffsets_.push_back(reinterpret_cast<const void*>(size_t(chunk.firstIndex) * sizeof(uint32_t)));
+            }
+            rangeEnd = chunk.firstIndex + chunk.indexCount;
+        }
+        if (drawCounts_.empty()) continue;
         const Material& material = scene.materials[instance.material];
+        if (material.doubleSided) {
+            glDisable(GL_CULL_FACE);
+        } else {
+            // A transform with negative determinant mirrors the mesh, which turns counter-clockwise front faces
+            // clockwise on screen.
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            glFrontFace(glm::determinant(glm::mat3(instance.transform)) < 0.0f ? GL_CW : GL_CCW);
+        }
         glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(instance.transform));
         glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
         glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normalMatrix));
@@ -103,10 +137,12 @@ void GpuScene::drawInstances(const Scene& scene) const {
         }
         glUniform1i(3, mask);
         glUniformMatrix3fv(4, 1, GL_FALSE, glm::value_ptr(material.uvTransform));
-        const MeshBuffers& mesh = meshes_[instance.mesh];
         glBindVertexArray(mesh.vao.id());
-        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        glMultiDrawElements(GL_TRIANGLES, drawCounts_.data(), GL_UNSIGNED_INT, drawOffsets_.data(),
+                            GLsizei(drawCounts_.size()));
     }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
 }
 
 }  // namespace glimmer

@@ -109,6 +109,10 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
                     {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
                     {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},
+        // The last G-buffer pass after frustum culling of the meshes' chunks (back-face culling not counted).
+        {"gbuffer_draw", {{"chunks", gpuScene_->lastDrawStats().chunksTotal},
+                          {"chunks_drawn", gpuScene_->lastDrawStats().chunksDrawn},
+                          {"triangles_drawn", gpuScene_->lastDrawStats().trianglesDrawn}}},
     };
     return result;
 }

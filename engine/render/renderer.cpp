@@ -195,7 +195,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     const FrameContext frame{scene,        gpuScene,     camera,   settings_, targets_,
                              environment_, methodResources_.get(), iblResources_.get(),
                              width,        height,       blendSample,
-                             blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id()};
+                             blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
+                             uniforms.viewProjection};
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
     runPass(*lightingPass_, frame);

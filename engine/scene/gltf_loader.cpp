@@ -370,6 +370,7 @@ private:
         float roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
         m.alpha = std::max(roughness * roughness, 1e-3f);  // the G-buffer multiplies by the texture's roughness^2
         m.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
+        m.doubleSided = gm.doubleSided;   // glTF 2.0 Sec. 3.9.5: single-sided (back faces culled) unless set
         if (gm.alphaMode == "MASK") m.alphaCutoff = float(gm.alphaCutoff);
         if (gm.alphaMode == "BLEND") {
             // The deferred pipeline has no blending: the closest meaningful rendering is a mask at one half.

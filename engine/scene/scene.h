@@ -39,6 +39,9 @@ struct Material {
     bool glinty = false;       // the current glint method replaces D only on glinty materials
     float glintDensityScale = 1.0f;  // multiplies the method's microfacet density (per material)
     float alphaCutoff = -1.0f; // >= 0: alpha mask
+    // false: back faces are culled (glTF doubleSided: false). Only for surfaces whose back faces are never seen
+    // (closed solids, walls against solids); two-sided ones shade back faces with the flipped normal.
+    bool doubleSided = true;
     // Texture indices into Scene::textures, -1 when absent. Channel conventions follow glTF; the glint density
     // mask is read from the red channel of glintMaskTexture (spatially varying density).
     int baseColorTexture = -1;

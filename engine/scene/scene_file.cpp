@@ -198,7 +198,7 @@ int loadTexture(Scene& scene, const Reader& r, const Json& o, const char* key, c
 // Fills or overrides the fields present in `o` (materials of the base scene keep what the file leaves out).
 void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::string& where, Material& m) {
     r.checkKeys(o, where, {"name", "baseColor", "alpha", "roughness", "metallic", "ndf", "glinty", "glintDensityScale",
-                           "alphaCutoff", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
+                           "alphaCutoff", "doubleSided", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
                            "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees"});
     if (o.contains("baseColor")) m.baseColor = r.colour(o["baseColor"], where + ".baseColor");
     if (o.contains("alpha") && o.contains("roughness")) r.fail(where, "give either alpha or roughness, not both");
@@ -217,6 +217,7 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
     m.glinty = r.boolean(o, "glinty", where, m.glinty);
     m.glintDensityScale = r.number(o, "glintDensityScale", where, m.glintDensityScale, 0.0f, 1e6f);
     m.alphaCutoff = r.number(o, "alphaCutoff", where, m.alphaCutoff, -1.0f, 1.0f);
+    m.doubleSided = r.boolean(o, "doubleSided", where, m.doubleSided);
     if (int t = loadTexture(scene, r, o, "baseColorTexture", where, true); t >= 0) m.baseColorTexture = t;
     if (int t = loadTexture(scene, r, o, "metallicRoughnessTexture", where, false); t >= 0) m.metallicRoughnessTexture = t;
     if (int t = loadTexture(scene, r, o, "normalTexture", where, false); t >= 0) m.normalTexture = t;

@@ -19,7 +19,8 @@ void GBufferPass::execute(const FrameContext& frame) {
     const float clearDepth = 0.0f;
     glClearNamedFramebufferfv(frame.targets.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
     program_.use();
-    frame.gpuScene.drawInstances(frame.scene);
+    // GpuScene culls frustum chunks and, on single-sided materials, back faces (it sets and resets the cull state).
+    frame.gpuScene.drawInstances(frame.scene, frame.viewProjection);
 }
 
 }  // namespace glimmer

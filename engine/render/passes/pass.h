@@ -35,6 +35,7 @@ struct FrameContext {
     bool blendSample;
     float blendWeight;
     GLuint emptyVao;                         // for full-screen triangles
+    glm::mat4 viewProjection;                // of this frame (geometry passes cull against it)
 };
 
 class Pass {

@@ -1,0 +1,48 @@
+// The window's resolution handling: the scene renders at the dynamic render scale (render/dynamic_resolution.h),
+// the display image is upscaled to the window (render/upscale.h) before the UI is drawn at native resolution, and
+// frame times are kept for percentiles (strip and `view --stats`). Glint footprints and UV derivatives are those of
+// the internal resolution by construction: the G-buffer and lighting passes run at the internal size.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "core/frame_times.h"
+#include "render/dynamic_resolution.h"
+#include "render/renderer.h"
+#include "render/upscale.h"
+
+namespace glimmer {
+
+class WindowResolution {
+public:
+    static constexpr float kSoftwareTargetFps = 12.0f, kSoftwareStartScale = 0.5f;
+
+    // Defaults per renderer: software renderers adapt towards kSoftwareTargetFps from kSoftwareStartScale (unless
+    // `deterministic`: a --screenshot run stays at scale 1), GPUs render at scale 1. Flags override.
+    WindowResolution(const std::filesystem::path& shaderRoot, bool softwareRenderer, bool deterministic,
+                     std::optional<float> renderScale, std::optional<float> targetFps);
+
+    // One frame's wall time (ms, frames after the first); adapts the scale.
+    void addFrame(double frameMs);
+    void internalSize(int windowW, int windowH, int& w, int& h) const { control_.internalSize(windowW, windowH, w, h); }
+    // The renderer's display image (internal size) to `target` (window size), from column `fromColumn` on.
+    void present(const Renderer& renderer, GLuint target, int windowW, int windowH, int fromColumn = 0);
+
+    float scale() const { return control_.scale(); }
+    // "p50 83.1 p95 97.0 ms  scale 0.62 (target 12 fps)" over the recent frames.
+    std::string statsText() const;
+    // The run's frame times: count, median, p95, mean, fps at the median, scale range.
+    nlohmann::json statsJson() const;
+    const std::vector<std::filesystem::path>& dependencies() const { return upscale_.dependencies(); }
+
+private:
+    DynamicResolution control_;
+    UpscalePass upscale_;
+    FrameTimes times_;
+    std::vector<double> scales_;   // per measured frame
+    int changes_ = 0;
+};
+
+}  // namespace glimmer

@@ -1,0 +1,78 @@
+#include "render/upscale.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace glimmer {
+
+UpscalePass::UpscalePass(const std::filesystem::path& shaderRoot)
+    : program_(shaderRoot, {"upscale", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "post/upscale.frag"}}}) {
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    vao_ = gl::VertexArray(vao);
+}
+
+void UpscalePass::draw(GLuint sourceTexture, GLuint sourceFramebuffer, int sourceW, int sourceH,
+                       GLuint targetFramebuffer, int targetW, int targetH, int fromColumn) {
+    fromColumn = std::clamp(fromColumn, 0, targetW);
+    if (fromColumn >= targetW) return;
+    if (sourceW == targetW && sourceH == targetH) {
+        glBlitNamedFramebuffer(sourceFramebuffer, targetFramebuffer, fromColumn, 0, targetW, targetH, fromColumn, 0,
+                               targetW, targetH, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        return;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, targetFramebuffer);
+    glViewport(0, 0, targetW, targetH);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(fromColumn, 0, targetW - fromColumn, targetH);
+    program_.use();
+    glUniform2i(0, sourceW, sourceH);
+    glUniform2f(1, float(sourceW) / float(targetW), float(sourceH) / float(targetH));
+    glBindTextureUnit(0, sourceTexture);
+    glBindVertexArray(vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+namespace {
+std::array<float, 4> catmullRomWeights(float t) {
+    float t2 = t * t, t3 = t2 * t;
+    return {0.5f * (-t + 2.0f * t2 - t3), 0.5f * (2.0f - 5.0f * t2 + 3.0f * t3), 0.5f * (t + 4.0f * t2 - 3.0f * t3),
+            0.5f * (-t2 + t3)};
+}
+}  // namespace
+
+std::vector<uint8_t> catmullRomUpscale(const std::vector<uint8_t>& source, int sourceW, int sourceH, int targetW,
+                                       int targetH) {
+    std::vector<uint8_t> out(size_t(targetW) * size_t(targetH) * 4);
+    float sx = float(sourceW) / float(targetW), sy = float(sourceH) / float(targetH);
+    for (int y = 0; y < targetH; ++y) {
+        float py = (float(y) + 0.5f) * sy - 0.5f, by = std::floor(py);
+        auto wy = catmullRomWeights(py - by);
+        for (int x = 0; x < targetW; ++x) {
+            float px = (float(x) + 0.5f) * sx - 0.5f, bx = std::floor(px);
+            auto wx = catmullRomWeights(px - bx);
+            float sum[3] = {0, 0, 0};
+            for (int j = 0; j < 4; ++j) {
+                int yy = std::clamp(int(by) - 1 + j, 0, sourceH - 1);
+                float row[3] = {0, 0, 0};
+                for (int i = 0; i < 4; ++i) {
+                    int xx = std::clamp(int(bx) - 1 + i, 0, sourceW - 1);
+                    const uint8_t* texel = &source[(size_t(yy) * size_t(sourceW) + size_t(xx)) * 4];
+                    for (int c = 0; c < 3; ++c) row[c] += wx[size_t(i)] * (float(texel[c]) / 255.0f);
+                }
+                for (int c = 0; c < 3; ++c) sum[c] += wy[size_t(j)] * row[c];
+            }
+            uint8_t* o = &out[(size_t(y) * size_t(targetW) + size_t(x)) * 4];
+            for (int c = 0; c < 3; ++c) o[c] = uint8_t(std::lround(std::clamp(sum[c], 0.0f, 1.0f) * 255.0f));
+            o[3] = 255;
+        }
+    }
+    return out;
+}
+
+}  // namespace glimmer
