@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "render/ibl_modes.h"
 #include "render/offscreen.h"
 #include "render/settings.h"
 #include "support/golden.h"
@@ -55,6 +56,19 @@ TEST(RegularSamplingGolden, BadParametersAreOneLineUsageErrors) {
     settings.ibl = "fis";
     EXPECT_THROW(settings.apply("ibl.xi0=0.2"), UsageError) << "fis has no xi0";
     settings.apply("ibl.pyramid=gauss6");
+}
+
+// A mode's defaults are its paper's method: regular sampling reads the 6x6 Gaussian pyramid of Sec. 3 (the one its
+// Sec. 8 evaluation uses); fis is Colbert & Krivanek's filtered importance sampling, which reads the plain
+// (box-filtered) mip chain of the map.
+TEST(RegularSamplingGolden, DefaultPyramidsFollowThePapers) {
+    auto defaultPyramid = [](const std::string& mode) {
+        for (const ParamSpec& spec : findIblMode(mode).params)
+            if (spec.name == "pyramid") return spec.choices.at(size_t(spec.defaultValue));
+        return std::string("(none)");
+    };
+    EXPECT_EQ(defaultPyramid("regular"), "gauss6");
+    EXPECT_EQ(defaultPyramid("fis"), "source");
 }
 
 }  // namespace

@@ -88,7 +88,10 @@ static IblMode regularMode() {
         {"mip_bias", 0.0f, -4.0f, 4.0f, "added to the per-sample MIP level of Eq. 16"},
         {"ring_rule", 0.0f, 0.0f, 1.0f, "samples per circle: arc (reproduces Fig. 4's counts) or eq13 (literal)",
          {"arc", "eq13"}},
-        {"pyramid", 0.0f, 0.0f, 3.0f, "MIP pyramid read: the environment's own box chain, or rebuilt (Sec. 3)",
+        // Default gauss6: the paper's pyramid (Sec. 3, Table 1; Sec. 8 evaluates with the 6x6 Gaussian).
+        {"pyramid", 3.0f, 0.0f, 3.0f,
+         "MIP pyramid read: rebuilt with the paper's filters (Sec. 3; default gauss6, as in Sec. 8), or the "
+         "environment's own box chain (source)",
          {"source", "box", "gauss4", "gauss6"}},
         {"object_maps", 0.0f, 0.0f, 1.0f, "1: metallic objects reflect their own cube map rendered at their centroid (Sec. 3)",
          {}, true},
