@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "render/ibl_modes.h"
+#include "ibl/ibl_modes.h"
 #include "render/offscreen.h"
 #include "render/settings.h"
 #include "support/golden.h"

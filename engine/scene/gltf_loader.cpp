@@ -1,6 +1,7 @@
 #include "scene/gltf_loader.h"
 
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -42,6 +43,28 @@ ExtensionSupport extensionSupport(const std::string& name) {
     if (supported.count(name)) return ExtensionSupport::Supported;
     if (refused.count(name)) return ExtensionSupport::Refused;
     return ExtensionSupport::Ignored;
+}
+
+// The first required extension the loader refuses, read from the file's JSON (the JSON chunk of a GLB), or "".
+// tinygltf fails on compressed geometry before the extension list can be checked (a Draco primitive's accessors
+// have no bufferView), so a failed load asks this to name the real reason.
+std::string refusedRequiredExtension(const std::vector<unsigned char>& bytes, bool binary) {
+    const unsigned char* json = bytes.data();
+    size_t length = bytes.size();
+    if (binary) {
+        if (bytes.size() < 20) return "";
+        uint32_t chunkLength = 0;
+        std::memcpy(&chunkLength, bytes.data() + 12, 4);
+        if (chunkLength > bytes.size() - 20) return "";
+        json = bytes.data() + 20;
+        length = chunkLength;
+    }
+    nlohmann::json root = nlohmann::json::parse(json, json + length, nullptr, false);
+    if (!root.is_object() || !root.contains("extensionsRequired") || !root["extensionsRequired"].is_array()) return "";
+    for (const auto& ext : root["extensionsRequired"])
+        if (ext.is_string() && extensionSupport(ext.get<std::string>()) == ExtensionSupport::Refused)
+            return ext.get<std::string>();
+    return "";
 }
 
 // Collects warnings so each distinct one is printed once per file.
@@ -827,7 +850,12 @@ Scene loadGltfScene(const std::filesystem::path& path) {
     } catch (const std::exception& e) {
         throw Error(file + ": cannot load glTF (" + firstLine(e.what()) + ")");
     }
-    if (!ok) throw Error(file + ": cannot load glTF (" + firstLine(error.empty() ? "unknown error" : error) + ")");
+    if (!ok) {
+        const std::string refused = refusedRequiredExtension(bytes, binary);
+        if (!refused.empty())
+            throw Error(file + ": requires extension " + refused + ", which Glimmer cannot read");
+        throw Error(file + ": cannot load glTF (" + firstLine(error.empty() ? "unknown error" : error) + ")");
+    }
     bytes = {};
     SceneBuilder builder(model, file);
     // tinygltf reports missing images and similar non-fatal problems as warnings, one per line.
