@@ -21,6 +21,8 @@
 
 namespace glimmer {
 
+class EnvironmentCache;
+
 // What `--env` / Scene::environment name: "" or "procedural" (default sky), "none", "constant:R,G,B" (or
 // "constant:V"), or an image path.
 struct EnvironmentSpec {
@@ -46,6 +48,9 @@ SunDescription sunFromScene(const Scene& scene);
 // Wall-clock milliseconds of each precompute step (each closed by glFinish).
 struct EnvironmentTimings {
     double loadMs = 0, convertMs = 0, mipsMs = 0, prefilterMs = 0, irradianceMs = 0, brdfLutMs = 0, totalMs = 0;
+    bool cacheHit = false;      // read from the disk cache (render/environment_cache.h): loadMs is that read
+    bool cacheStored = false;   // built and written to the disk cache
+    double cacheStoreMs = 0;
 };
 
 // The uniform block of shaders/common/ibl.glsl (std140, binding kEnvironmentBinding).
@@ -92,6 +97,9 @@ public:
     }
 
 private:
+    // The disk cache key's parameters for `spec` ("" = do not cache: turned off, `none`, unreadable file).
+    std::string cacheParameters(const EnvironmentSpec& spec, const SunDescription& sun) const;
+    bool loadFromCache(const EnvironmentCache& cache);
     void buildBrdfLut();
     void buildMaps(const EnvironmentSpec& spec, const SunDescription& sun);
     void fillProceduralSky(const SunDescription& sun, bool drawSun);
