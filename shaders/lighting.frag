@@ -42,17 +42,39 @@ vec3 worldPosition(ivec2 pixel, float depth) {
     return p.xyz / p.w;
 }
 
-// TAA with taa.stable_glints: the point of the tangent plane at `position` (normal n) seen through the unjittered
-// centre of `pixel`. The jittered image is the unjittered one moved by u_jitter.xy pixels, so that centre lies at
-// pixel + 0.5 + u_jitter.xy here. Falls back to `position` for rays almost parallel to the plane.
-vec3 unjitteredSurfacePoint(ivec2 pixel, vec3 position, vec3 n) {
-    vec2 ndc = (vec2(pixel) + 0.5 + u_jitter.xy) / vec2(u_viewport.xy) * 2.0 - 1.0;
+// TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
+// position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
+vec3 tangentPlanePoint(vec2 screen, vec3 anchor, vec3 n) {
+    vec2 ndc = screen / vec2(u_viewport.xy) * 2.0 - 1.0;
     vec4 near = u_inverseViewProjection * vec4(ndc, 1.0, 1.0);   // reversed Z: depth 1 is the near plane
     vec3 direction = normalize(near.xyz / near.w - u_cameraPosition.xyz);
     float cosine = dot(direction, n);
-    if (abs(cosine) < 1e-3) return position;
-    float t = dot(position - u_cameraPosition.xyz, n) / cosine;
-    return t > 0.0 ? u_cameraPosition.xyz + direction * t : position;
+    if (abs(cosine) < 1e-3) return anchor;
+    float t = dot(anchor - u_cameraPosition.xyz, n) / cosine;
+    return t > 0.0 ? u_cameraPosition.xyz + direction * t : anchor;
+}
+
+// Moves the glint footprint of a jittered pixel to its unjittered centre. The jittered image is the unjittered one
+// moved by u_jitter.xy pixels, so that centre lies at pixel + 0.5 + u_jitter.xy here. The UV is taken as an affine
+// map of the tangent plane (exact for planar mappings), fitted to the G-buffer's derivatives at the jittered centre;
+// the unjittered centre and its one-pixel neighbours then give the UV, its derivatives (which change across the
+// screen under perspective: at grazing angles a half-pixel shift changes the footprint by 10-20%) and the position.
+void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
+    vec2 centre = vec2(s.pixel) + 0.5;
+    vec3 p = tangentPlanePoint(centre, position, s.n);
+    vec3 dx = tangentPlanePoint(centre + vec2(1.0, 0.0), position, s.n) - p;
+    vec3 dy = tangentPlanePoint(centre + vec2(0.0, 1.0), position, s.n) - p;
+    mat2 planeDerivatives = mat2(vec2(dot(dx, s.t), dot(dx, s.b)), vec2(dot(dy, s.t), dot(dy, s.b)));
+    if (abs(determinant(planeDerivatives)) < 1e-12) return;
+    mat2 planeToUv = mat2(s.duvdx, s.duvdy) * inverse(planeDerivatives);
+    vec2 moved = centre + u_jitter.xy;
+    vec3 q = tangentPlanePoint(moved, position, s.n);
+    vec3 qx = tangentPlanePoint(moved + vec2(1.0, 0.0), position, s.n) - q;
+    vec3 qy = tangentPlanePoint(moved + vec2(0.0, 1.0), position, s.n) - q;
+    s.uv += planeToUv * vec2(dot(q - p, s.t), dot(q - p, s.b));
+    s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
+    s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
+    position = q;
 }
 
 // Direction towards the light and the irradiance it delivers at normal incidence.
@@ -117,13 +139,10 @@ void main() {
     // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
     // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
     // second time and lose its peak (docs/image.md, "glints"). So with taa.stable_glints a glinty pixel is shaded
-    // at its unjittered centre: the UV moves back by jitter . (duv/dx, duv/dy) and the position (hence the view
-    // and light directions) to the tangent-plane point of the unjittered ray. Coverage, normal and base colour
-    // stay jittered, so the geometric edges of glinty surfaces are still anti-aliased.
-    if (glinty && u_jitter.z > 0.5) {
-        s.uv += u_jitter.x * s.duvdx + u_jitter.y * s.duvdy;
-        position = unjitteredSurfacePoint(pixel, position, s.n);
-    }
+    // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
+    // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
+    // geometric edges of glinty surfaces are still anti-aliased.
+    if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
     s.position = position;
     vec3 toEye = normalize(u_cameraPosition.xyz - position);
     mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));

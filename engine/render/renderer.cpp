@@ -200,7 +200,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     } else {
         taaPass_->reset();
     }
-    uniforms.jitter = {lastJitter_, settings_.common_("taa.stable_glints") > 0.5f ? 1.0f : 0.0f, 0.0f};
+    // z: the lighting pass moves glint footprints back to the unjittered pixel centre (only on jittered frames, so
+    // an unjittered frame is shaded exactly as with aa=off).
+    const bool stableGlints = settings_.common_("taa.stable_glints") > 0.5f && lastJitter_ != glm::vec2(0.0f);
+    uniforms.jitter = {lastJitter_, stableGlints ? 1.0f : 0.0f, 0.0f};
     uniforms.viewProjection = uniforms.projection * uniforms.view;
     uniforms.inverseViewProjection = glm::inverse(uniforms.viewProjection);
     uniforms.cameraPosition = glm::vec4(camera.position, 1.0f);
