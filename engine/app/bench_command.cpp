@@ -23,13 +23,14 @@ static const char* kBenchHelp =
     "                     [--backend egl|osmesa]\n"
     "                     [--json FILE] [--csv FILE] [--markdown FILE]\n"
     "       glimmer bench --temporal [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--step S]\n"
-    "                     [--json FILE] [--markdown FILE]\n"
+    "                     [--aa off|taa] [--json FILE] [--markdown FILE]\n"
     "       glimmer bench --list-suites\n"
     "  Times each scene x method (x variant x density of the suite): warm-up frames, then N frames each closed by\n"
     "  glFinish (wall clock; median, min, max), ratio to smooth measured in the same run. Without --suite: one case\n"
     "  per --scenes (or --scene) and --methods (or --method). Smooth is always timed. The Markdown table goes to\n"
     "  stdout, progress to stderr. --temporal measures glint flicker along a dolly of N cameras (step S x the\n"
-    "  distance to the target per frame, default 0.01).\n";
+    "  distance to the target per frame, default 0.01); with --aa it measures the displayed image rendered with\n"
+    "  that anti-aliasing instead of the glint AOV.\n";
 
 static std::vector<std::string> splitList(const std::string& text, const char* flag) {
     std::vector<std::string> items;
@@ -107,6 +108,10 @@ int runBenchCommand(const std::vector<std::string>& argList) {
         options.environment = request.environment;
         options.ibl = request.settings.ibl;
         options.progress = progress;
+        if (auto aa = args.value("--aa")) {
+            if (*aa != "off" && *aa != "taa") throw UsageError("--aa: '" + *aa + "' is not off or taa");
+            options.aa = *aa;
+        }
         if (csvPath) throw UsageError("--csv: not available with --temporal (use --json)");
         args.finish();
         std::vector<bench::TemporalResult> results = bench::runTemporal(options);

@@ -80,6 +80,14 @@ int runViewCommand(const std::vector<std::string>& argList) {
     }
     options.pathFile = args.value("--path");
     args.finish();
+    // The interactive window shows the game image by default (docs/image.md): TAA, a little bloom, auto exposure.
+    // Headless runs (--frames) keep the offscreen defaults so that their screenshot equals `glimmer render`.
+    if (options.frameLimit == 0) {
+        RenderSettings& settings = options.request.settings;
+        if (!settings.isSet("aa")) settings.apply("aa=taa");
+        if (!settings.isSet("bloom.strength")) settings.apply("bloom.strength=0.04");
+        if (!settings.isSet("exposure") && !settings.isSet("exposure.auto")) settings.apply("exposure=auto");
+    }
     if (options.screenshot) {
         imageFormatForPath(*options.screenshot, "--screenshot");
         checkOutputPath(*options.screenshot, "--screenshot");  // before the window opens and renders

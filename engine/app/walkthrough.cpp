@@ -182,6 +182,9 @@ public:
             buildUi(uiInput, width, height);
             moveCamera(events, previous, now, width, height);
             previous = now;
+            // Eye adaptation: the metered exposure moves towards each frame's target with a 0.5 s time constant
+            // (headless --frames runs converge at once, like offscreen renders).
+            renderer_->setExposureAdaptation(options_.frameLimit == 0 && frame > 0 ? float(1.0 - std::exp(-dt / 0.5)) : 1.0f);
             drawFrame(width, height);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();

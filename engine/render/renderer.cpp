@@ -11,7 +11,11 @@
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
+#include "render/passes/bloom_pass.h"
+#include "render/passes/exposure_pass.h"
+#include "render/passes/taa_pass.h"
 #include "render/passes/tonemap_pass.h"
+#include "render/image/halton_jitter.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
 
@@ -45,11 +49,17 @@ void Renderer::buildPasses() {
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
-    auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
+    auto taa = std::make_unique<TaaPass>(shaderRoot_);
+    auto exposure = std::make_unique<ExposurePass>(shaderRoot_);
+    auto bloom = std::make_unique<BloomPass>(shaderRoot_);
+    auto tonemap = std::make_unique<TonemapPass>(shaderRoot_, *bloom, *exposure);
     gbufferPass_ = std::move(gbuffer);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
-    tonemapPass_ = std::move(tonemap);
+    tonemapPass_ = std::move(tonemap);   // before the passes it refers to are replaced
+    taaPass_ = std::move(taa);
+    exposurePass_ = std::move(exposure);
+    bloomPass_ = std::move(bloom);
     createMethodResources();
 }
 
@@ -73,7 +83,7 @@ void Renderer::reloadPrograms() {
 std::vector<Pass*> Renderer::frame() const {
     std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
-    passes.push_back(tonemapPass_.get());
+    passes.insert(passes.end(), {taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
     return passes;
 }
 
@@ -108,6 +118,10 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 
 void Renderer::setSettings(const RenderSettings& settings) {
     const bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
+    // Any edit is a cut for TAA: the history shows the old image.
+    if (methodChanged || settings.common != settings_.common || settings.methods != settings_.methods ||
+        settings.debugView != settings_.debugView || settings.iblValues != settings_.iblValues)
+        taaPass_->reset();
     if (!methodChanged) {
         settings_ = settings;
         return;
@@ -164,7 +178,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     if (iblResources_)
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
                                environment_.enabled() ? environment_.sourceCube() : 0, *capture_);
-    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass);
+    const bool temporalAa = TaaPass::wanted(settings_);
+    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
     timer_.beginFrame(measurePasses     ? PassTimer::Mode::Measure
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
@@ -175,6 +190,20 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     FrameUniforms uniforms{};
     uniforms.view = camera.view();
     uniforms.projection = camera.projection(float(width) / float(height));
+    // TAA jitters the projection: a screen-space translation, so UV derivatives and glint footprints stay those
+    // of the unjittered pixel (docs/image.md). AOVs and accumulating IBL modes stay unjittered.
+    lastJitter_ = glm::vec2(0.0f);
+    if (temporalAa) {
+        const glm::vec3 forward = -glm::vec3(glm::inverse(uniforms.view)[2]);
+        lastJitter_ = taaPass_->beginFrame(uniforms.projection * uniforms.view, camera.position, forward, width, height);
+        uniforms.projection = image::jitteredProjection(uniforms.projection, lastJitter_, {width, height});
+    } else {
+        taaPass_->reset();
+    }
+    // z: the lighting pass moves glint footprints back to the unjittered pixel centre (only on jittered frames, so
+    // an unjittered frame is shaded exactly as with aa=off).
+    const bool stableGlints = settings_.common_("taa.stable_glints") > 0.5f && lastJitter_ != glm::vec2(0.0f);
+    uniforms.jitter = {lastJitter_, stableGlints ? 1.0f : 0.0f, 0.0f};
     uniforms.viewProjection = uniforms.projection * uniforms.view;
     uniforms.inverseViewProjection = glm::inverse(uniforms.viewProjection);
     uniforms.cameraPosition = glm::vec4(camera.position, 1.0f);
@@ -196,16 +225,25 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              environment_, methodResources_.get(), iblResources_.get(),
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
-                             uniforms.viewProjection};
+                             uniforms.viewProjection,
+                             temporalAa};
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
+    runPass(*taaPass_, frame);
+    runPass(*exposurePass_, frame);
+    runPass(*bloomPass_, frame);
     runPass(*tonemapPass_, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ++frameIndex_;
 }
+
+void Renderer::setExposureAdaptation(float weight) { exposurePass_->setAdaptation(weight); }
+float Renderer::meteredExposureEv() const { return exposurePass_->meteredEv(); }
+unsigned Renderer::taaFrames() const { return taaPass_->framesSinceReset(); }
+void Renderer::resetHistory() { taaPass_->reset(); }
 
 std::vector<float> Renderer::readHdr() const {
     std::vector<float> pixels(size_t(targets_.width()) * targets_.height() * 4);

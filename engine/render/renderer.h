@@ -1,6 +1,7 @@
 // The deferred renderer: a fixed list of passes (render/passes/): G-buffer, lighting (with the selected glint
-// method and IBL mode), the method's own passes (GlintMethod::createPasses), tone mapping. Owns the passes and the
-// frame targets; the scene is uploaded separately (GpuScene).
+// method and IBL mode), the method's own passes (GlintMethod::createPasses), the image pipeline (TAA, auto exposure,
+// bloom; docs/image.md), tone mapping. Owns the passes and the frame targets; the scene is uploaded separately
+// (GpuScene).
 #pragma once
 #include <array>
 #include <filesystem>
@@ -25,6 +26,9 @@ namespace glimmer {
 
 class GBufferPass;
 class LightingPass;
+class TaaPass;
+class ExposurePass;
+class BloomPass;
 class TonemapPass;
 class RendererCapture;
 
@@ -87,6 +91,15 @@ public:
     std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
 
+    // The image pipeline (docs/image.md). Auto exposure moves towards each frame's metered value with this
+    // weight (1: at once, the offscreen default; the window passes 1 - exp(-dt / time constant)).
+    void setExposureAdaptation(float weight);
+    float meteredExposureEv() const;
+    // TAA: frames accumulated since the last history reset, the jitter of the last frame (pixels), a reset.
+    unsigned taaFrames() const;
+    glm::vec2 lastJitter() const { return lastJitter_; }
+    void resetHistory();
+
 private:
     void buildPasses();          // every pass and the method's resources; throws, keeping the previous ones
     void createMethodResources();
@@ -103,7 +116,11 @@ private:
     std::unique_ptr<GBufferPass> gbufferPass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
+    std::unique_ptr<TaaPass> taaPass_;
+    std::unique_ptr<ExposurePass> exposurePass_;
+    std::unique_ptr<BloomPass> bloomPass_;
     std::unique_ptr<TonemapPass> tonemapPass_;
+    glm::vec2 lastJitter_{0.0f};
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)

@@ -7,7 +7,9 @@
 #define BINDING_LIGHTS 1             // storage LightBlock
 #define BINDING_MATERIALS 2          // storage MaterialBlock
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's parameters (P_<NAME>)
+#define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
+#define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15
@@ -39,3 +41,11 @@
 
 // Full-screen passes after lighting read their inputs from units 0.. in the order their shaders list them.
 #define UNIT_TONEMAP_HDR 0
+#define UNIT_TONEMAP_BLOOM 1         // half-size bloom sum (bloom pass), bilinear
+#define UNIT_TAA_CURRENT 0           // this frame's HDR radiance
+#define UNIT_TAA_GLINT_PART 1        // the glint part of it (lighting pass, location 3)
+#define UNIT_TAA_DEPTH 2
+#define UNIT_TAA_HISTORY_BASE 3      // previous resolve, non-glint part (+ sample count in a)
+#define UNIT_TAA_HISTORY_GLINT 4     // previous resolve, glint part
+#define UNIT_BLOOM_SOURCE 0
+#define UNIT_EXPOSURE_HDR 0

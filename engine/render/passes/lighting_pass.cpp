@@ -26,9 +26,10 @@ LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const std::s
 
 void LightingPass::execute(const FrameContext& frame) {
     const bool glintTargets = findGlintMethod(frame.settings.method).glintPostPass;
-    gl::PipelineState state = gl::fullscreenState(
-        glintTargets ? frame.targets.lightingGlintFramebuffer() : frame.targets.hdrFramebuffer(), frame.width,
-        frame.height);
+    gl::PipelineState state = gl::fullscreenState(glintTargets       ? frame.targets.lightingGlintFramebuffer()
+                                                  : frame.temporalAa ? frame.targets.lightingGlintPartFramebuffer()
+                                                                     : frame.targets.hdrFramebuffer(),
+                                                  frame.width, frame.height);
     if (frame.blendSample) {
         // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1). Only the HDR target blends (the
         // glint targets hold this sample's glints; the method's post pass adds them with the same weight).

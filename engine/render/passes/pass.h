@@ -35,7 +35,9 @@ struct FrameContext {
     bool blendSample;
     float blendWeight;
     GLuint emptyVao;                         // for full-screen triangles
-    glm::mat4 viewProjection;                // of this frame (geometry passes cull against it)
+    glm::mat4 viewProjection;                // of this frame (geometry passes cull against it; jittered with TAA)
+    // TAA (docs/image.md): this frame is jittered and resolved; the lighting pass writes the glint part.
+    bool temporalAa = false;
 };
 
 class Pass {
