@@ -27,6 +27,14 @@ const std::vector<CommonParam>& commonParams() {
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
+        // Reflection probes (render/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
+        // say so (IblMode::readsProbes): prefiltered, ndf-is, glint-is, wang2020.
+        {{"probes.enabled", 1.0f, 0.0f, 1.0f,
+          "1: metallic objects reflect the scene around them (reflection probes, captured when the scene changes)",
+          {}, true}},
+        {{"probes.face_size", 128.0f, 16.0f, 512.0f, "face size of each reflection probe's cube map", {}, true}},
+        {{"probes.max", 8.0f, 0.0f, 8.0f, "most reflection probes (one per metallic instance, in scene order)", {},
+          true}},
     };
     return params;
 }
