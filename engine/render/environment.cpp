@@ -19,10 +19,10 @@ namespace glimmer {
 
 namespace {
 
-// Samples per texel of prefiltered level k: 32 << k. Rough levels have few texels but wide lobes, where the
-// box-filtered source mips are coarsest, so they get the most samples; measured against CPU quadrature in
-// tests/environment_test.cpp (a flat 128 left 3.9% errors at alpha = 1 and cost more in total).
-int prefilterSamples(int level) { return 32 << level; }
+// Samples per texel of prefiltered level k: 32 << k (CubePrefilter::samples). Rough levels have few texels but
+// wide lobes, where the box-filtered source mips are coarsest, so they get the most samples; measured against CPU
+// quadrature in tests/environment_test.cpp (a flat 128 left 3.9% errors at alpha = 1 and cost more in total).
+int prefilterSamples(int level) { return CubePrefilter::samples(level); }
 constexpr int kBrdfLutSamples = 4096;    // per table entry and NDF (512 left 0.026 errors at n.v < 0.1)
 constexpr int kLocalSize = 8;            // compute work-group edge (shaders/env/*.comp)
 
@@ -193,7 +193,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     if (!equirectProgram_) {
         equirectProgram_ = computeProgram(shaderRoot_, "env/equirect_to_cube", "env/equirect_to_cube.comp");
         skyProgram_ = computeProgram(shaderRoot_, "env/procedural_sky", "env/procedural_sky.comp");
-        prefilterProgram_ = computeProgram(shaderRoot_, "env/prefilter", "env/prefilter.comp");
+        prefilter_ = std::make_unique<CubePrefilter>(shaderRoot_);
         lutProgram_ = computeProgram(shaderRoot_, "env/brdf_lut", "env/brdf_lut.comp");
     }
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -383,22 +383,7 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
 }
 
 void Environment::prefilter() {
-    prefilterProgram_.use();
-    glBindTextureUnit(0, sourceCube_.id());
-    glUniform1i(4, kFaceSize);
-    glUniform1f(5, float(levelCount(kFaceSize) - 1));
-    for (int level = 1; level < kPrefilterLevels; ++level) {
-        int size = kFaceSize >> level;
-        glBindImageTexture(0, specular_.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glUniform1i(0, size);
-        glUniform1f(1, levelAlpha(level));
-        glUniform1i(3, prefilterSamples(level));
-        for (int ndf = 0; ndf < 2; ++ndf) {
-            glUniform1i(2, ndf);
-            glDispatchCompute(groups(size), groups(size), 6);
-        }
-    }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    prefilter_->run(sourceCube_.id(), kFaceSize, specular_.id(), kPrefilterLevels, 0, 0x3u);
 }
 
 void Environment::projectIrradiance() {

@@ -13,10 +13,12 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/cube_prefilter.h"
 #include "scene/scene.h"
 
 namespace glimmer {
@@ -91,10 +93,7 @@ public:
     GLuint specularCubeArray() const { return specular_.id(); }
     GLuint brdfLut() const { return brdfLut_.id(); }
     const std::array<glm::vec3, 9>& irradianceSh() const { return sh_; }
-    static float levelAlpha(int level) {
-        float r = float(level) / float(kPrefilterLevels - 1);
-        return r * r;
-    }
+    static float levelAlpha(int level) { return CubePrefilter::levelAlpha(level, kPrefilterLevels); }
 
 private:
     // The disk cache key's parameters for `spec` ("" = do not cache: turned off, `none`, unreadable file).
@@ -107,7 +106,8 @@ private:
     void projectIrradiance();
 
     std::filesystem::path shaderRoot_;
-    gl::Program equirectProgram_, skyProgram_, prefilterProgram_, lutProgram_;
+    gl::Program equirectProgram_, skyProgram_, lutProgram_;
+    std::unique_ptr<CubePrefilter> prefilter_;   // shared with the reflection probes
     gl::Texture sourceCube_, specular_, brdfLut_;
     gl::Buffer uniforms_;
     std::array<glm::vec3, 9> sh_{};

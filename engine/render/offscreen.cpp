@@ -117,9 +117,11 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"frame_ms", frameMs.back()},
         {"frame_cpu_ms", frameCpuMs.back()},
         {"frames", frameMs.size()},
+        {"frame_ms_each", frameMs},   // frame 0 includes on-demand work (e.g. the reflection probes' capture)
         {"scene_load_ms", sceneLoadMs_},
         {"program_build_ms", programBuildMs_},
         {"environment", renderer_->environment().stats()},
+        {"probes", renderer_->probes().stats()},
         {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
                     {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
                     {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},

@@ -31,6 +31,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
+    probes_ = std::make_unique<ReflectionProbes>(shaderRoot_);
     buildPasses();
 }
 
@@ -152,17 +153,18 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
 void Renderer::updateMethodData(bool measurePasses) {
     if (!methodResources_ && !iblResources_) return;
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
-    bool cleared = false;
     auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
-        for (const auto& [name, ms] : ran) {
-            if (measurePasses) timer_.recordWallOnly(name, ms);
-            if (!cleared) editPasses_.clear(), cleared = true;
-            editPasses_.push_back({name, ms, 0.0});
-        }
+        for (const auto& [name, ms] : ran) recordOnDemand(name, ms, measurePasses);
     };
     if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
     if (iblResources_ && environment_.enabled())
         record(iblResources_->update(settings_.iblModeValues(settings_.ibl), methodResources_.get()));
+}
+
+void Renderer::recordOnDemand(const std::string& name, double ms, bool measurePasses) {
+    if (measurePasses) timer_.recordWallOnly(name, ms);
+    if (!editPassesOfThisFrame_) editPasses_.clear(), editPassesOfThisFrame_ = true;
+    editPasses_.push_back({name, ms, 0.0});
 }
 
 void Renderer::runPass(Pass& pass, const FrameContext& frame) {
@@ -179,12 +181,22 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
                                environment_.enabled() ? environment_.sourceCube() : 0, *capture_);
     const bool temporalAa = TaaPass::wanted(settings_);
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    // Reflection probes for modes that read them, re-captured only when what they see changed; like the
+    // IBL-mode resources above they render, so they run before this frame's state is set.
+    const bool probesActive = ibl.readsProbes && environment_.enabled() && probeSettings(settings_).enabled;
+    ReflectionProbes::Update probeUpdate;
+    if (probesActive) probeUpdate = probes_->update(scene, gpuScene, environment_, settings_);
     targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
     timer_.beginFrame(measurePasses     ? PassTimer::Mode::Measure
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
+    editPassesOfThisFrame_ = false;
+    if (probeUpdate.ran) {
+        recordOnDemand("probes.capture", probeUpdate.captureMs, measurePasses);
+        recordOnDemand("probes.prefilter", probeUpdate.prefilterMs, measurePasses);
+    }
 
-    const IblMode& ibl = findIblMode(settings_.ibl);
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
     FrameUniforms uniforms{};
@@ -226,7 +238,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
                              uniforms.viewProjection,
-                             temporalAa};
+                             temporalAa, probes_.get(), probesActive};
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
     runPass(*lightingPass_, frame);

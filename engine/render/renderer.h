@@ -19,6 +19,7 @@
 #include "render/gpu_scene.h"
 #include "render/passes/pass.h"
 #include "render/passes/pass_timer.h"
+#include "render/reflection_probes.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
@@ -80,6 +81,8 @@ public:
     // calls it too. `flag` names the spec's origin in error messages.
     void prepareEnvironment(const Scene& scene, const std::string& flag = "scene environment");
     const Environment& environment() const { return environment_; }
+    // Reflection probes (captured on the frames where what they see changed; render/reflection_probes.h).
+    const ReflectionProbes& probes() const { return *probes_; }
 
     const FrameTargets& targets() const { return targets_; }
     // Readbacks, bottom row first (GL order).
@@ -124,6 +127,7 @@ private:
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
+    std::unique_ptr<ReflectionProbes> probes_;
     Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_, iblParams_;
@@ -131,6 +135,8 @@ private:
     gl::VertexArray emptyVao_;
     PassTimer timer_;
     std::vector<PassTiming> editPasses_;
+    bool editPassesOfThisFrame_ = false;   // editPasses_ already holds on-demand passes of the current frame
+    void recordOnDemand(const std::string& name, double ms, bool measurePasses);
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
     uint32_t frameIndex_ = 0;

@@ -48,6 +48,14 @@ const std::vector<CommonParam>& commonParams() {
           "1: exposure from the luminance histogram (exposure=auto); `exposure` then adds stops", {}, true}},
         {{"tonemap", 0.0f, 0.0f, 2.0f, "tone curve: aces (Narkowicz fit), neutral (Khronos PBR Neutral), agx",
           {"aces", "neutral", "agx"}}},
+        // Reflection probes (render/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
+        // say so (IblMode::readsProbes): prefiltered, ndf-is, glint-is, wang2020.
+        {{"probes.enabled", 1.0f, 0.0f, 1.0f,
+          "1: metallic objects reflect the scene around them (reflection probes, captured when the scene changes)",
+          {}, true}},
+        {{"probes.face_size", 128.0f, 16.0f, 512.0f, "face size of each reflection probe's cube map", {}, true}},
+        {{"probes.max", 8.0f, 0.0f, 8.0f, "most reflection probes (one per metallic instance, in scene order)", {},
+          true}},
     };
     return params;
 }

@@ -10,6 +10,7 @@
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
+#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15
@@ -31,6 +32,7 @@
 #define UNIT_IBL_FIRST 16            // IBL modes: 16..23
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
+#define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

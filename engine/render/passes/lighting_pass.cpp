@@ -2,6 +2,7 @@
 
 #include "gl/pipeline_state.h"
 #include "common/bindings.glsl"
+#include "render/reflection_probes.h"
 
 namespace glimmer {
 
@@ -41,6 +42,7 @@ void LightingPass::execute(const FrameContext& frame) {
     if (frame.methodResources) frame.methodResources->bind();
     if (frame.iblResources) frame.iblResources->bind();
     frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
+    if (frame.probes) frame.probes->bind(frame.probesActive);
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
