@@ -1,5 +1,6 @@
 // HDR radiance to display: exposure, ACES-fitted curve (Narkowicz 2015), sRGB encoding.
-// Debug views (u_viewport.w != 0) are shown without tone mapping, clamped, so channels read directly.
+// Debug views (u_viewport.w != 0) are shown without tone mapping, clamped, so channels read directly; the albedo
+// (a colour) is sRGB-encoded like every PNG colour, so it displays as the base colour it is.
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 
@@ -21,6 +22,7 @@ void main() {
     int view = u_viewport.w;
     vec3 display;
     if (view == VIEW_FINAL) display = linearToSrgb(acesFitted(hdr * u_exposure.x));
+    else if (view == VIEW_ALBEDO) display = linearToSrgb(hdr);
     else if (view == VIEW_NORMAL || view == VIEW_TANGENT) display = hdr * 0.5 + 0.5;
     else if (view == VIEW_UV) display = vec3(fract(hdr.xy), 0.0);
     else display = clamp(hdr, 0.0, 1.0);

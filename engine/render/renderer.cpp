@@ -12,6 +12,9 @@
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
 #include "render/passes/tonemap_pass.h"
+#include "render/passes/emissive_pass.h"
+#include "render/passes/forward_target.h"
+#include "render/passes/transparent_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
 
@@ -46,6 +49,14 @@ void Renderer::buildPasses() {
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
+    auto forwardTarget = std::make_shared<ForwardTarget>();
+    auto emissive = std::make_unique<EmissivePass>(shaderRoot_, forwardTarget);
+    auto transparent = std::make_unique<TransparentPass>(shaderRoot_, forwardTarget);
+    forwardRestorePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Restore);
+    forwardSavePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Save);
+    forwardTarget_ = std::move(forwardTarget);
+    emissivePass_ = std::move(emissive);
+    transparentPass_ = std::move(transparent);
     gbufferPass_ = std::move(gbuffer);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
@@ -71,9 +82,9 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {gbufferPass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
-    passes.push_back(tonemapPass_.get());
+    passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(), tonemapPass_.get()});
     return passes;
 }
 
@@ -199,8 +210,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              uniforms.viewProjection};
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
+    runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
+    runPass(*forwardSavePass_, frame);
+    runPass(*emissivePass_, frame);         // emission of opaque and masked materials
+    runPass(*transparentPass_, frame);      // glTF BLEND surfaces, back to front
     runPass(*tonemapPass_, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -26,6 +26,7 @@ namespace glimmer {
 class GBufferPass;
 class LightingPass;
 class TonemapPass;
+class ForwardTarget;
 class RendererCapture;
 
 class Renderer {
@@ -104,6 +105,9 @@ private:
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
     std::unique_ptr<TonemapPass> tonemapPass_;
+    // After lighting: emission and alpha-blended surfaces (render/passes/forward_target.h), sharing one target.
+    std::shared_ptr<ForwardTarget> forwardTarget_;
+    std::unique_ptr<Pass> forwardRestorePass_, forwardSavePass_, emissivePass_, transparentPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
