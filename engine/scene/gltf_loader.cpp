@@ -483,6 +483,12 @@ private:
             }
             *slot.target = sceneTexture(slot.gltfTexture, slot.srgb, slot.normalScale, slot.occlusionStrength);
         }
+        if (gm.emissiveTexture.index >= 0 && m.emissiveTexture < 0 && m.emissive != glm::vec3(0.0f)) {
+            // emissiveFactor multiplies the texture (glTF 3.9.2): alone it would light the whole surface. One
+            // line per model, whatever the number of materials.
+            m.emissive = glm::vec3(0.0f);
+            warnings_.add("emission is off on materials whose emissive texture cannot be used");
+        }
         return m;
     }
 
