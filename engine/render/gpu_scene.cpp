@@ -40,7 +40,11 @@ gl::Texture uploadTexture(const TextureData& data) {
     glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, glWrap(data.sampler.wrapT));
     glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, data.sampler.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, data.sampler.nearestMag ? GL_NEAREST : GL_LINEAR);
-    if (GLAD_GL_EXT_texture_filter_anisotropic) glTextureParameterf(texture.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
+    // Anisotropic filtering for mipmapped linear textures only: it has no meaning without mip levels, and llvmpipe
+    // (Mesa 22.3.6, LLVM 15) crashed inside LLVM compiling the G-buffer shader for a NEAREST texture with 16x
+    // anisotropy (tests/data/texture_transform.gltf, ScenesGltf.TextureTransformChangesTheSampledTexels).
+    if (GLAD_GL_EXT_texture_filter_anisotropic && data.sampler.mipmaps && !data.sampler.nearestMag)
+        glTextureParameterf(texture.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
     return texture;
 }
 
