@@ -27,7 +27,7 @@ for dir in "$models"/*/; do
         :
     else
         # A refused model (Box-draco: KHR_draco_mesh_compression) gets a tile with the one-line error.
-        oiiotool --pattern constant:color=0.15,0.15,0.15 "$size" 3 -o "$png"
+        oiiotool --pattern constant:color=0.15,0.15,0.15,1 "$size" 4 -o "$png"
         label "$png" "$(tail -1 "$logs/$name.log" | sed 's/.*: requires/requires/' | cut -c1-40)" "$png" 6 60 12
     fi
     label "$png" "$name" "$out/.tile_$name.png" 6 20 16
