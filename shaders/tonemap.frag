@@ -1,6 +1,7 @@
 // HDR radiance to display: bloom mixed in (Jimenez 2014: a lerp towards the blurred image keeps energy),
 // exposure (manual stops times the metered exposure when exposure=auto), a tone curve (image/tone_curves.glsl),
-// sRGB encoding. Debug views (u_viewport.w != 0) are shown without any of that, clamped, so channels read directly.
+// sRGB encoding. Debug views (u_viewport.w != 0) are shown without any of that, clamped, so channels read directly; the albedo
+// (a colour) is sRGB-encoded like every PNG colour, so it displays as the base colour it is.
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "image/tone_curves.glsl"
@@ -27,7 +28,8 @@ void main() {
                       u_bloomStrength);
         float exposure = u_exposure.x * (u_autoExposure != 0 ? exp2(u_meteredEv) : 1.0);
         display = linearToSrgb(applyToneCurve(u_toneCurve, hdr * exposure));
-    } else if (view == VIEW_NORMAL || view == VIEW_TANGENT) display = hdr * 0.5 + 0.5;
+    } else if (view == VIEW_ALBEDO) display = linearToSrgb(hdr);
+    else if (view == VIEW_NORMAL || view == VIEW_TANGENT) display = hdr * 0.5 + 0.5;
     else if (view == VIEW_UV) display = vec3(fract(hdr.xy), 0.0);
     else display = clamp(hdr, 0.0, 1.0);
     o_color = vec4(display, 1.0);

@@ -168,7 +168,7 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
             glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(u), &u);
             const FrameContext frame{view,     gpuScene, camera,  captureSettings, targets_, environment, nullptr,
                                      nullptr,  size,     size,    false,           1.0f,     emptyVao_.id(),
-                                     u.viewProjection, this, false};
+                                     u.viewProjection, false, this, false};
             gbuffer_->execute(frame);
             lighting_->execute(frame);
             glGetTextureImage(targets_.hdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(hdr.size() * sizeof(float)), hdr.data());

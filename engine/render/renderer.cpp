@@ -16,6 +16,9 @@
 #include "render/passes/taa_pass.h"
 #include "render/passes/tonemap_pass.h"
 #include "render/image/halton_jitter.h"
+#include "render/passes/emissive_pass.h"
+#include "render/passes/forward_target.h"
+#include "render/passes/transparent_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
 
@@ -54,6 +57,14 @@ void Renderer::buildPasses() {
     auto exposure = std::make_unique<ExposurePass>(shaderRoot_);
     auto bloom = std::make_unique<BloomPass>(shaderRoot_);
     auto tonemap = std::make_unique<TonemapPass>(shaderRoot_, *bloom, *exposure);
+    auto forwardTarget = std::make_shared<ForwardTarget>();
+    auto emissive = std::make_unique<EmissivePass>(shaderRoot_, forwardTarget);
+    auto transparent = std::make_unique<TransparentPass>(shaderRoot_, forwardTarget);
+    forwardRestorePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Restore);
+    forwardSavePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Save);
+    forwardTarget_ = std::move(forwardTarget);
+    emissivePass_ = std::move(emissive);
+    transparentPass_ = std::move(transparent);
     gbufferPass_ = std::move(gbuffer);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
@@ -82,9 +93,10 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {gbufferPass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
-    passes.insert(passes.end(), {taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
+    passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(),
+                                 taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
     return passes;
 }
 
@@ -241,8 +253,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              temporalAa, probes_.get(), probesActive};
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
+    runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
+    runPass(*forwardSavePass_, frame);
+    runPass(*emissivePass_, frame);         // emission of opaque and masked materials
+    runPass(*transparentPass_, frame);      // glTF BLEND surfaces, back to front
     runPass(*taaPass_, frame);
     runPass(*exposurePass_, frame);
     runPass(*bloomPass_, frame);

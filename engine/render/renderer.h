@@ -31,6 +31,7 @@ class TaaPass;
 class ExposurePass;
 class BloomPass;
 class TonemapPass;
+class ForwardTarget;
 class RendererCapture;
 
 class Renderer {
@@ -124,6 +125,9 @@ private:
     std::unique_ptr<BloomPass> bloomPass_;
     std::unique_ptr<TonemapPass> tonemapPass_;
     glm::vec2 lastJitter_{0.0f};
+    // After lighting: emission and alpha-blended surfaces (render/passes/forward_target.h), sharing one target.
+    std::shared_ptr<ForwardTarget> forwardTarget_;
+    std::unique_ptr<Pass> forwardRestorePass_, forwardSavePass_, emissivePass_, transparentPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)

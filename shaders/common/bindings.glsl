@@ -40,6 +40,7 @@
 #define UNIT_MATERIAL_NORMAL 2
 #define UNIT_MATERIAL_OCCLUSION 3
 #define UNIT_MATERIAL_GLINT_MASK 4
+#define UNIT_MATERIAL_EMISSIVE 5        // emissive and transparent passes only (unit 5 is the G-buffer depth elsewhere)
 
 // Full-screen passes after lighting read their inputs from units 0.. in the order their shaders list them.
 #define UNIT_TONEMAP_HDR 0
