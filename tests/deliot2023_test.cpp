@@ -12,7 +12,7 @@
 
 #include "core/files.h"
 #include "gl/program.h"
-#include "reference/deliot2023_probe.h"
+#include "glints/method_probe.h"
 #include "reference/deliot2023_reference.h"
 #include "glints/deliot2023_resources.h"
 #include "platform/context.h"

@@ -1,4 +1,4 @@
-#include "reference/deliot2023_probe.h"
+#include "glints/method_probe.h"
 #include "common/bindings.glsl"
 
 #include "core/files.h"
@@ -11,7 +11,7 @@ GlintMethodProbe::GlintMethodProbe(const std::string& methodId, const ParamValue
     : method_(findGlintMethod(methodId)), values_(values) {
     gl::ProgramDesc desc;
     desc.name = "probe/" + method_.id;
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023_probe.comp"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/method_probe.comp"}};
     desc.defines = {method_.define};
     desc.preamble = methodParamsGlsl(method_);
     desc.includeMacros["GLINT_METHOD_FILE"] = method_.shaderFile;
