@@ -105,6 +105,7 @@ private:
     std::vector<std::unique_ptr<Pass>> methodPasses_;
     std::unique_ptr<TonemapPass> tonemapPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    std::string methodResourcesFrom_;   // GlintMethod::resourcesFrom of the resources made (user methods' headers may change it)
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
     Environment environment_;
