@@ -4,6 +4,7 @@
 #include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "common/constants.glsl"
+#include "common/frame.glsl"     // methods may read the frame (kemppinen2025 triplanar)
 #include "common/brdf.glsl"
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
