@@ -70,8 +70,8 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) { return P
 
     fs::path script = dir / "script.txt";
     fs::path a = dir / "a.exr", b = dir / "b.exr", c = dir / "c.exr", d = dir / "d.exr", log = dir / "view.err";
-    write(script, "1 screenshot " + a.string() + "\n5 screenshot " + b.string() + "\n9 screenshot " + c.string() +
-                      "\n13 screenshot " + d.string() + "\n13.5 quit\n");
+    write(script, "1 screenshot " + a.string() + "\n4.5 screenshot " + b.string() + "\n8 screenshot " + c.string() +
+                      "\n11.5 screenshot " + d.string() + "\n12 quit\n");
     auto waitFor = [](const fs::path& f) { return "while [ ! -f " + f.string() + " ]; do sleep 0.1; done; "; };
     std::string view = std::string(GLIMMER_EXECUTABLE) + " view --scene plane90 --size 64x64 --aov glint --no-vsync" +
                        " --render-scale 1 --target-fps 0 --method-file " + method.string() +

@@ -4,7 +4,8 @@
 #include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "common/constants.glsl"
-#include "common/frame.glsl"     // methods may read the frame (kemppinen2025 triplanar)
+// Methods may read the frame (kemppinen2025's triplanar mode); the probe binds an identity camera.
+#include "common/frame.glsl"
 #include "common/brdf.glsl"
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
