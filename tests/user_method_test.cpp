@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -232,18 +233,22 @@ TEST(UserMethod, CommandLineLoadsCompareListAndSceneKey) {
     EXPECT_NE(unknown.err.find("file:PATH.glsl"), std::string::npos) << unknown.err;
 }
 
-// check-method on the example: every rule passes (convergence, furnace and finite are deterministic; the timing
-// rules are medians of interleaved frames).
+// check-method on the example: every rule passes. Convergence, furnace and finite are deterministic; the timing
+// rules (cost, constant-time) run with GLIMMER_MEASURE=1 only: they cost four more sessions and depend on the
+// load of a shared CI machine.
 TEST(UserMethodCheck, ExamplePassesEveryRule) {
     std::string id = loadUserMethodFile(examplePath());
     checks::CheckOptions options;
     options.size = 96;
     options.timingSize = 128;
     options.timingFrames = 3;
+    const char* measure = std::getenv("GLIMMER_MEASURE");
+    bool timing = measure && std::string(measure) == "1";
+    if (!timing) options.rules = {"convergence", "furnace", "finite"};
     checks::CheckReport report = checks::checkMethod(id, options);
     std::string table = checks::formatTable(report);
     std::printf("%s", table.c_str());
-    ASSERT_EQ(report.results.size(), 5u);
+    ASSERT_EQ(report.results.size(), timing ? 5u : 3u);
     EXPECT_TRUE(report.passed()) << table;
 }
 
