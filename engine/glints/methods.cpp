@@ -40,7 +40,8 @@ static GlintMethod deliot2023Method() {
              {"gate", 0.0f, 0.0f, 1.0f,
               "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
               {"soft", "hard"}}},
-            createDeliot2023Resources};
+            createDeliot2023Resources, {}, false,
+            {{"log_density", 40.0f}}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
 }
 
 // Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016.glsl.
@@ -54,7 +55,8 @@ static GlintMethod zirr2016Method() {
               "gamma: half-angle (radians) of the cone around h in which a facet reflects; also the angular cell",
               {}, false, true},
              {"dynamic_range", 50000.0f, 1.0f, 1e9f, "largest D / D_smooth a pixel may reach (their clamp)", {}, false,
-              true}}};
+              true}},
+            nullptr, {}, false, {{"log_density", 40.0f}}};
 }
 
 // Kemppinen et al. 2025: semi-discrete NDF as a Gaussian mixture on an implicit 4D grid (shaders/glints/
@@ -91,7 +93,8 @@ static GlintMethod kemppinen2025Method() {
                  "sqrt(N)) (spatial cells 3-6 filter deviations, our earlier reading)",
                  {"authors", "cells"}},
             },
-            nullptr};
+            nullptr, {}, false,
+            {{"density", 1e13f}}};   // tests/kemppinen2025_test.cpp HighDensityConvergesToSmooth
 }
 
 // Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020.glsl).
@@ -126,8 +129,8 @@ static GlintMethod wang2020Method() {
     return method;
 }
 
-const std::vector<GlintMethod>& glintMethods() {
-    static const std::vector<GlintMethod> methods = {
+static std::vector<GlintMethod>& methodTable() {
+    static std::vector<GlintMethod> methods = {
         smoothMethod(),
         deliot2023Method(),
         zirr2016Method(),
@@ -135,6 +138,27 @@ const std::vector<GlintMethod>& glintMethods() {
         wang2020Method(),
     };
     return methods;
+}
+
+const std::vector<GlintMethod>& glintMethods() { return methodTable(); }
+
+std::string registerGlintMethod(GlintMethod method) {
+    GlintMethod* sameFile = nullptr;
+    for (GlintMethod& existing : methodTable()) {
+        if (existing.isUserMethod() && existing.sourceFile == method.sourceFile) sameFile = &existing;
+        else if (existing.id == method.id && !existing.isUserMethod())
+            throw Error(method.sourceFile.string() + ": method name '" + method.id + "' is a built-in method's");
+        else if (existing.id == method.id)
+            throw Error(method.sourceFile.string() + ": method name '" + method.id + "' is already used by " +
+                        existing.sourceFile.string());
+    }
+    if (!sameFile) {
+        methodTable().push_back(std::move(method));
+        return "";
+    }
+    std::string previous = sameFile->id;
+    *sameFile = std::move(method);
+    return previous;
 }
 
 const GlintMethod& findGlintMethod(const std::string& id) {

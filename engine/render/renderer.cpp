@@ -78,6 +78,7 @@ void Renderer::buildPasses() {
 void Renderer::createMethodResources() {
     const GlintMethod& method = findGlintMethod(settings_.method);
     methodResources_ = method.createResources ? method.createResources() : nullptr;
+    methodResourcesFrom_ = method.resourcesFrom;
     const IblMode& ibl = findIblMode(settings_.ibl);
     iblResources_ = ibl.createResources ? ibl.createResources() : nullptr;
 }
@@ -116,12 +117,16 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
                         program->dependencies().end();
         if (!affected) continue;
         const std::string name = program->desc().name;
+        // The lighting program's description comes from the method table again: a user method's header may have
+        // changed its parameters (P_<NAME> block) since it was built.
+        const bool lighting = program == lightingPass_->programs().front();
         try {
-            gl::Program fresh(shaderRoot_, program->desc());
+            gl::Program fresh(shaderRoot_, lighting ? lightingProgramDesc(settings_.method, settings_.ibl) : program->desc());
             *program = std::move(fresh);  // swap only after a successful link
             shaderErrors_.erase(name);
             shaderErrors_.erase("all programs");
             rebuilt.push_back(name);
+            if (lighting && findGlintMethod(settings_.method).resourcesFrom != methodResourcesFrom_) createMethodResources();
         } catch (const std::exception& e) {
             shaderErrors_[name] = e.what();
         }

@@ -129,6 +129,7 @@ private:
     std::shared_ptr<ForwardTarget> forwardTarget_;
     std::unique_ptr<Pass> forwardRestorePass_, forwardSavePass_, emissivePass_, transparentPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    std::string methodResourcesFrom_;   // GlintMethod::resourcesFrom of the resources made (user methods' headers may change it)
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
     std::unique_ptr<ReflectionProbes> probes_;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "glints/methods.h"
 #include "ibl/ibl_modes.h"
 
@@ -175,7 +176,8 @@ std::string describeParams() {
     out << "Common parameters (--set KEY=VALUE):\n";
     for (const CommonParam& p : commonParams()) line(p.spec.name, p.spec, p.sceneDefault);
     for (const GlintMethod& m : glintMethods()) {
-        out << "\nMethod " << m.id << ": " << m.title << " [" << m.citation << "]\n";
+        out << "\nMethod " << m.id << (m.isUserMethod() ? " (user method, " + displayPath(m.sourceFile) + ")" : "") << ": "
+            << m.title << " [" << m.citation << "]\n";
         if (m.params.empty()) out << "  (no parameters)\n";
         for (const ParamSpec& spec : m.params) line(m.id + "." + spec.name, spec, false);
     }

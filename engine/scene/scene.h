@@ -98,6 +98,7 @@ struct Scene {
     std::vector<std::string> walkthrough;  // camera names in the order of a walkthrough path (may be empty)
     std::string environment;       // "" = the procedural default sky, "none", or an image path
     glm::vec3 skyColor{0.0f};      // background and constant ambient radiance when no environment is active
+    std::vector<std::string> methodFiles;  // user glint methods of a scene file ("methodFiles"), resolved paths
 
     size_t triangleCount() const;
     const Camera& camera(const std::string& name) const;  // throws UsageError naming --camera

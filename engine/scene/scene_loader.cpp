@@ -46,4 +46,11 @@ Scene loadScene(const std::string& nameOrPath) {
     return ext == ".json" ? loadSceneFile(path) : loadGltfScene(path);
 }
 
+std::vector<std::string> sceneMethodFiles(const std::string& nameOrPath) {
+    std::filesystem::path file = nameOrPath;
+    if (isPlainName(nameOrPath)) file = defaultContentDir() / (nameOrPath + ".json");
+    if (file.extension() != ".json") return {};
+    return readSceneMethodFiles(file);
+}
+
 }  // namespace glimmer

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/files.h"
 #include "render/aov.h"
 #include "ibl/ibl_modes.h"
 #include "ui/font.h"
@@ -64,6 +65,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         if (!methods.empty()) {
             const GlintMethod& method = methods[size_t(methodIndex)];
             ui.label(method.title);
+            // A user method: where it comes from (edits to the file reload it, header included).
+            if (method.isUserMethod()) ui.label("file " + displayPath(method.sourceFile));
             if (method.params.empty()) ui.label("(no parameters)");
             for (const ParamSpec& spec : method.params) {
                 float value = paramOr(settings.methodValues(method.id), spec);
@@ -73,6 +76,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
                 result.settingsChanged |= edit != Edit::None;
             }
         }
+        for (size_t i = 0; i < window.methodFileChoices.size(); ++i)
+            if (ui.button("load " + window.methodFileChoices[i])) result.loadMethodFile = int(i);
     }
 
     if (ui.section("Scene, camera, window")) {
