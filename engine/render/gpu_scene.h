@@ -23,6 +23,8 @@ public:
     // winding flipped for mirroring transforms). Sets GL_CULL_FACE / glFrontFace per draw and leaves culling off.
     void drawInstances(const Scene& scene, const glm::mat4& viewProjection) const;
     int lightCount() const { return lightCount_; }
+    // Unique per GpuScene built in this process: geometry never changes under one serial (baked data keys on it).
+    uint64_t serial() const { return serial_; }
 
     struct DrawStats {
         size_t chunksTotal = 0, chunksDrawn = 0;
@@ -42,6 +44,7 @@ private:
     std::vector<gl::Texture> textures_;
     gl::Buffer materials_, lights_;
     int lightCount_ = 0;
+    uint64_t serial_ = 0;
     mutable DrawStats drawStats_;
     mutable std::vector<GLsizei> drawCounts_;       // per-draw scratch for glMultiDrawElements
     mutable std::vector<const void*> drawOffsets_;

@@ -8,7 +8,10 @@
 #include "gl/debug.h"
 #include "glints/methods.h"
 #include "common/bindings.glsl"
+#include "render/ao/ambient_occlusion.h"
+#include "render/passes/ao_resolve_pass.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/passes/gtao_pass.h"
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
 #include "render/passes/tonemap_pass.h"
@@ -27,6 +30,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
+    ambientOcclusion_ = std::make_unique<AmbientOcclusion>();
     buildPasses();
 }
 
@@ -43,10 +47,14 @@ static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& meth
 void Renderer::buildPasses() {
     // Build all first, then swap: a failure leaves the previous passes in place.
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
+    auto gtao = std::make_unique<GtaoPass>(shaderRoot_, *ambientOcclusion_);
+    auto aoResolve = std::make_unique<AoResolvePass>(shaderRoot_, *ambientOcclusion_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
     gbufferPass_ = std::move(gbuffer);
+    gtaoPass_ = std::move(gtao);
+    aoResolvePass_ = std::move(aoResolve);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
     tonemapPass_ = std::move(tonemap);
@@ -71,7 +79,7 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {gbufferPass_.get(), gtaoPass_.get(), aoResolvePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
     passes.push_back(tonemapPass_.get());
     return passes;
@@ -169,6 +177,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
 
+    // Sky visibility of a new scene (baked or loaded from the cache) before any pass of this frame.
+    for (const PassTiming& ran : ambientOcclusion_->prepare(settings_, scene, gpuScene.serial(), width, height))
+        if (measurePasses) timer_.recordWallOnly(ran.name, ran.wallMs);
+
     const IblMode& ibl = findIblMode(settings_.ibl);
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
@@ -196,8 +208,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              environment_, methodResources_.get(), iblResources_.get(),
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
-                             uniforms.viewProjection};
+                             uniforms.viewProjection, ambientOcclusion_->occlusionTexture()};
     runPass(*gbufferPass_, frame);
+    runPass(*gtaoPass_, frame);
+    runPass(*aoResolvePass_, frame);
     updateMethodData(measurePasses);
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass

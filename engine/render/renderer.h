@@ -24,6 +24,9 @@
 namespace glimmer {
 
 class GBufferPass;
+class GtaoPass;
+class AoResolvePass;
+class AmbientOcclusion;
 class LightingPass;
 class TonemapPass;
 class RendererCapture;
@@ -76,6 +79,7 @@ public:
     // calls it too. `flag` names the spec's origin in error messages.
     void prepareEnvironment(const Scene& scene, const std::string& flag = "scene environment");
     const Environment& environment() const { return environment_; }
+    const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
 
     const FrameTargets& targets() const { return targets_; }
     // Readbacks, bottom row first (GL order).
@@ -101,6 +105,9 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     std::unique_ptr<GBufferPass> gbufferPass_;
+    std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes
+    std::unique_ptr<GtaoPass> gtaoPass_;
+    std::unique_ptr<AoResolvePass> aoResolvePass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
     std::unique_ptr<TonemapPass> tonemapPass_;

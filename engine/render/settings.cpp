@@ -27,6 +27,19 @@ const std::vector<CommonParam>& commonParams() {
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
+        // Ambient occlusion of the environment / ambient term (docs/ambient_occlusion.md).
+        {{"ao.enabled", 1.0f, 0.0f, 1.0f, "ambient occlusion of the environment / ambient term (0 or 1)", {}, true}},
+        {{"ao.screen", 1.0f, 0.0f, 1.0f, "screen-space GTAO, the small scale (0 or 1)", {}, true}},
+        {{"ao.sky", 1.0f, 0.0f, 1.0f, "baked sky visibility, the large scale (0 or 1)", {}, true}},
+        {{"ao.radius", 1.0f, 0.05f, 10.0f, "GTAO search radius in metres"}},
+        {{"ao.power", 1.0f, 0.0f, 4.0f, "intensity: the combined visibility is raised to this power"}},
+        {{"ao.slices", 4.0f, 1.0f, 16.0f, "GTAO slices per pixel", {}, true}},
+        {{"ao.steps", 6.0f, 1.0f, 32.0f, "GTAO horizon-search steps per side of a slice", {}, true}},
+        {{"ao.falloff", 0.8f, 0.0f, 0.99f, "fraction of the radius after which occluders fade out"}},
+        {{"ao.denoise", 1.0f, 0.0f, 1.0f, "4x4 bilateral denoise of the GTAO term (0 or 1)", {}, true}},
+        {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
+        {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
+        {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
     };
     return params;
 }

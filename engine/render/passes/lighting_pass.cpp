@@ -43,6 +43,7 @@ void LightingPass::execute(const FrameContext& frame) {
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
+    glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.ambientOcclusion);
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

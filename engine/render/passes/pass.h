@@ -36,6 +36,7 @@ struct FrameContext {
     float blendWeight;
     GLuint emptyVao;                         // for full-screen triangles
     glm::mat4 viewProjection;                // of this frame (geometry passes cull against it)
+    GLuint ambientOcclusion = 0;             // factor on the environment term (AmbientOcclusion::occlusionTexture)
 };
 
 class Pass {

@@ -1,0 +1,25 @@
+// GTAO pass (shaders/ao/gtao.frag; Jimenez et al. 2016, Sec. 4): reads the G-buffer depth and normals, writes the
+// raw screen-space visibility (AmbientOcclusion::rawTexture) at the internal resolution. Runs when ao.enabled and
+// ao.screen are on; skipped, like the G-buffer, on later samples of an accumulated view.
+#pragma once
+#include <filesystem>
+
+#include "render/ao/ambient_occlusion.h"
+#include "render/passes/pass.h"
+
+namespace glimmer {
+
+class GtaoPass : public Pass {
+public:
+    GtaoPass(const std::filesystem::path& shaderRoot, const AmbientOcclusion& ao);
+    const char* name() const override { return "gtao"; }
+    std::vector<gl::Program*> programs() override { return {&program_}; }
+    bool runs(const FrameContext& frame) const override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    gl::Program program_;
+    const AmbientOcclusion& ao_;
+};
+
+}  // namespace glimmer
