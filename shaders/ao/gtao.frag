@@ -82,11 +82,15 @@ void main() {
             float distancePixels = max(t * t * radiusPixels, float(j) + 1.0);   // denser near the centre
             for (int side = 0; side < 2; ++side) {
                 vec2 samplePixel = vec2(pixel) + 0.5 + (side == 0 ? omega : -omega) * distancePixels;
-                ivec2 texel = ivec2(floor(samplePixel));
-                if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, u_viewport.xy))) continue;
-                float sampleDepth = texelFetch(g_depth, texel, 0).r;
+                if (any(lessThan(samplePixel, vec2(0.5))) || any(greaterThan(samplePixel, vec2(u_viewport.xy) - 0.5)))
+                    continue;
+                // Depth filtered bilinearly at the exact sample position (the pass binds a linear sampler): NDC depth is
+                // linear in screen space across a plane, so the sample stays on the slice line and on the surface.
+                // A texel centre off the line would see a plane's own tangent directions out of the slice, whose
+                // angle to V lies above the slice's horizon, and darken every plane (measured: 0.96 on a bare floor).
+                float sampleDepth = texture(g_depth, samplePixel / vec2(u_viewport.xy)).r;
                 if (sampleDepth <= 0.0) continue;
-                vec3 delta = viewPosition(vec2(texel) + 0.5, sampleDepth) - P;
+                vec3 delta = viewPosition(samplePixel, sampleDepth) - P;
                 float len = length(delta);
                 if (len < 1e-5) continue;
                 float weight = clamp((radius - len) / (radius * (1.0 - falloffStart)), 0.0, 1.0);

@@ -21,7 +21,7 @@ struct PassTiming;
 struct AoSettings {
     bool enabled = true, screen = true, sky = true, denoise = true, multiBounce = true;
     float radius = 1.0f, power = 1.0f, falloff = 0.8f;
-    int slices = 4, steps = 6;
+    int slices = 2, steps = 4;
     ao::SkyVisibilityParams bake;
     static AoSettings from(const RenderSettings& settings);
 };

@@ -12,6 +12,9 @@ namespace glimmer {
 class GtaoPass : public Pass {
 public:
     GtaoPass(const std::filesystem::path& shaderRoot, const AmbientOcclusion& ao);
+    ~GtaoPass() override;
+    GtaoPass(const GtaoPass&) = delete;
+    GtaoPass& operator=(const GtaoPass&) = delete;
     const char* name() const override { return "gtao"; }
     std::vector<gl::Program*> programs() override { return {&program_}; }
     bool runs(const FrameContext& frame) const override;
@@ -20,6 +23,7 @@ public:
 private:
     gl::Program program_;
     const AmbientOcclusion& ao_;
+    GLuint linearDepthSampler_ = 0;   // bilinear depth at fractional sample positions (shaders/ao/gtao.frag)
 };
 
 }  // namespace glimmer
