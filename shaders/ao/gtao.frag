@@ -11,7 +11,7 @@
 //  - Several slices per pixel instead of the paper's one slice per frame with temporal reprojection (Sec. 4's spatio-temporal
 //    denoising):
 //    the renderer has no history buffer and offline renders must be complete in one frame. Slice angles and step
-//    offsets still follow a 4 x 4 interleaved pattern that the spatial 4 x 4 denoiser (ao_denoise.frag) averages out.
+//    offsets still follow a 4 x 4 interleaved pattern that the spatial 4 x 4 denoiser (ao_resolve.frag) averages out.
 //  - The result is the ratio of the visible to the unoccluded integral of the same slices, not their mean
 //    divided by pi: with few slices the mean of an unoccluded oblique surface scatters around 1, the ratio is 1
 //    exactly (nothing occludes: nothing changes) and converges to the same value.
