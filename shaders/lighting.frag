@@ -29,6 +29,8 @@ layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
 layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
 layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
 layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+// rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
+layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
@@ -157,9 +159,11 @@ void main() {
 
     // Environment lighting by the selected IBL mode (shaders/ibl/README.md), or the constant ambient when the
     // environment is off (--env none).
-    vec3 radiance = envEnabled()
+    // Ambient occlusion darkens this term only, never the lights (docs/ambient_occlusion.md).
+    vec4 occlusion = texture(u_ambientOcclusion, (vec2(pixel) + 0.5) / vec2(u_viewport.xy));
+    vec3 radiance = occlusion.rgb * (envEnabled()
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
-        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
     float firstLightD = 0.0;
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
     vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
@@ -204,6 +208,7 @@ void main() {
         case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
         case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
         case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
+        case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
         default: result = vec4(radiance, 1.0); break;
     }
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);

@@ -30,7 +30,7 @@ case "$mode" in run|test) ;; *) echo "bootstrap.sh: unknown mode '$mode' (use ru
 packages=(cmake ninja-build g++ pkg-config libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libegl1-mesa-dev
           libgl-dev libgles-dev libgl1-mesa-dri libtinygltf-dev libopenimageio-dev openimageio-tools
           nlohmann-json3-dev libgtest-dev python3-glad xvfb xauth x11-utils python3-matplotlib zlib1g-dev
-          libbullet-dev libmeshoptimizer-dev)
+          libbullet-dev libmeshoptimizer-dev libembree-dev)
 [ "$mode" = test ] && [ "$fuzz" = 1 ] && packages+=(clang libclang-rt-14-dev)   # tools/fuzz.sh
 missing=()
 for p in "${packages[@]}"; do

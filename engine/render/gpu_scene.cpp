@@ -1,4 +1,6 @@
 #include "render/gpu_scene.h"
+
+#include <atomic>
 #include "common/bindings.glsl"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -51,6 +53,8 @@ gl::Texture uploadTexture(const TextureData& data) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene) {
+    static std::atomic<uint64_t> nextSerial{1};
+    serial_ = nextSerial++;
     for (const MeshData& mesh : scene.meshes) {
         std::vector<Vertex> vertices(mesh.positions.size());
         for (size_t i = 0; i < vertices.size(); ++i) {

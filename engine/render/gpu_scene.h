@@ -35,6 +35,8 @@ public:
     bool hasBlended() const { return hasBlended_; }
     bool hasOpaqueEmissive() const { return hasOpaqueEmissive_; }
     int lightCount() const { return lightCount_; }
+    // Unique per GpuScene built in this process: geometry never changes under one serial (baked data keys on it).
+    uint64_t serial() const { return serial_; }
 
     struct DrawStats {
         size_t chunksTotal = 0, chunksDrawn = 0;
@@ -58,6 +60,7 @@ private:
     gl::Buffer materials_, lights_;
     int lightCount_ = 0;
     bool hasBlended_ = false, hasOpaqueEmissive_ = false;
+    uint64_t serial_ = 0;
     mutable DrawStats drawStats_;
     mutable std::vector<GLsizei> drawCounts_;       // per-draw scratch for glMultiDrawElements
     mutable std::vector<const void*> drawOffsets_;

@@ -8,7 +8,10 @@
 #include "gl/debug.h"
 #include "glints/methods.h"
 #include "common/bindings.glsl"
+#include "render/ao/ambient_occlusion.h"
+#include "render/passes/ao_resolve_pass.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/passes/gtao_pass.h"
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
 #include "render/passes/bloom_pass.h"
@@ -35,6 +38,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     emptyVao_ = gl::VertexArray(vao);
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
     probes_ = std::make_unique<ReflectionProbes>(shaderRoot_);
+    ambientOcclusion_ = std::make_unique<AmbientOcclusion>();
     buildPasses();
 }
 
@@ -51,6 +55,8 @@ static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& meth
 void Renderer::buildPasses() {
     // Build all first, then swap: a failure leaves the previous passes in place.
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
+    auto gtao = std::make_unique<GtaoPass>(shaderRoot_, *ambientOcclusion_);
+    auto aoResolve = std::make_unique<AoResolvePass>(shaderRoot_, *ambientOcclusion_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto taa = std::make_unique<TaaPass>(shaderRoot_);
@@ -66,6 +72,8 @@ void Renderer::buildPasses() {
     emissivePass_ = std::move(emissive);
     transparentPass_ = std::move(transparent);
     gbufferPass_ = std::move(gbuffer);
+    gtaoPass_ = std::move(gtao);
+    aoResolvePass_ = std::move(aoResolve);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
     tonemapPass_ = std::move(tonemap);   // before the passes it refers to are replaced
@@ -94,7 +102,7 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {gbufferPass_.get(), gtaoPass_.get(), aoResolvePass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
     passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(),
                                  taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
@@ -214,6 +222,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         recordOnDemand("probes.prefilter", probeUpdate.prefilterMs, measurePasses);
     }
 
+    // Sky visibility of a new scene (baked or loaded from the cache) before any pass of this frame.
+    for (const PassTiming& ran : ambientOcclusion_->prepare(settings_, scene, gpuScene.serial(), width, height))
+        if (measurePasses) timer_.recordWallOnly(ran.name, ran.wallMs);
+
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
     FrameUniforms uniforms{};
@@ -255,8 +267,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
                              uniforms.viewProjection,
-                             temporalAa, probes_.get(), probesActive};
+                             temporalAa, probes_.get(), probesActive, ambientOcclusion_->occlusionTexture()};
     runPass(*gbufferPass_, frame);
+    runPass(*gtaoPass_, frame);
+    runPass(*aoResolvePass_, frame);
     updateMethodData(measurePasses);
     runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
     runPass(*lightingPass_, frame);

@@ -26,6 +26,9 @@
 namespace glimmer {
 
 class GBufferPass;
+class GtaoPass;
+class AoResolvePass;
+class AmbientOcclusion;
 class LightingPass;
 class TaaPass;
 class ExposurePass;
@@ -84,6 +87,7 @@ public:
     const Environment& environment() const { return environment_; }
     // Reflection probes (captured on the frames where what they see changed; render/reflection_probes.h).
     const ReflectionProbes& probes() const { return *probes_; }
+    const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
 
     const FrameTargets& targets() const { return targets_; }
     // Readbacks, bottom row first (GL order).
@@ -118,6 +122,9 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     std::unique_ptr<GBufferPass> gbufferPass_;
+    std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes
+    std::unique_ptr<GtaoPass> gtaoPass_;
+    std::unique_ptr<AoResolvePass> aoResolvePass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
     std::unique_ptr<TaaPass> taaPass_;

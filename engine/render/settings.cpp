@@ -57,6 +57,19 @@ const std::vector<CommonParam>& commonParams() {
         {{"probes.face_size", 128.0f, 16.0f, 512.0f, "face size of each reflection probe's cube map", {}, true}},
         {{"probes.max", 8.0f, 0.0f, 8.0f, "most reflection probes (one per metallic instance, in scene order)", {},
           true}},
+        // Ambient occlusion of the environment / ambient term (docs/ambient_occlusion.md).
+        {{"ao.enabled", 1.0f, 0.0f, 1.0f, "ambient occlusion of the environment / ambient term (0 or 1)", {}, true}},
+        {{"ao.screen", 1.0f, 0.0f, 1.0f, "screen-space GTAO, the small scale (0 or 1)", {}, true}},
+        {{"ao.sky", 1.0f, 0.0f, 1.0f, "baked sky visibility, the large scale (0 or 1)", {}, true}},
+        {{"ao.radius", 1.0f, 0.05f, 10.0f, "GTAO search radius in metres"}},
+        {{"ao.power", 1.0f, 0.0f, 4.0f, "intensity: the combined visibility is raised to this power"}},
+        {{"ao.slices", 2.0f, 1.0f, 16.0f, "GTAO slices per pixel", {}, true}},
+        {{"ao.steps", 4.0f, 1.0f, 32.0f, "GTAO horizon-search steps per side of a slice", {}, true}},
+        {{"ao.falloff", 0.8f, 0.0f, 0.99f, "fraction of the radius after which occluders fade out"}},
+        {{"ao.denoise", 1.0f, 0.0f, 1.0f, "4x4 depth-aware denoise of the GTAO term (0 or 1)", {}, true}},
+        {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
+        {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
+        {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
     };
     return params;
 }

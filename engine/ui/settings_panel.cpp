@@ -36,6 +36,7 @@ std::string commonGroupTitle(const std::string& prefix) {
     if (prefix == "env") return "Environment";
     if (prefix == "material") return "Material overrides (all)";
     if (prefix == "probes") return "Reflection probes";
+    if (prefix == "ao") return "Ambient occlusion";
     return prefix;
 }
 

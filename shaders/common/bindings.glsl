@@ -33,6 +33,7 @@
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
 #define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
+#define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0
@@ -41,6 +42,14 @@
 #define UNIT_MATERIAL_OCCLUSION 3
 #define UNIT_MATERIAL_GLINT_MASK 4
 #define UNIT_MATERIAL_EMISSIVE 5        // emissive and transparent passes only (unit 5 is the G-buffer depth elsewhere)
+
+// Ambient-occlusion passes (shaders/ao/: gtao.frag, ao_resolve.frag), before lighting.
+#define UNIT_AO_DEPTH 0
+#define UNIT_AO_NORMAL 1
+#define UNIT_AO_RAW 2                // the GTAO pass's visibility, before denoising
+#define UNIT_AO_BASE_COLOR 3
+#define UNIT_AO_TANGENT_METALLIC 4
+#define UNIT_AO_SKY 5                // sampler3D: baked sky-visibility probes
 
 // Full-screen passes after lighting read their inputs from units 0.. in the order their shaders list them.
 #define UNIT_TONEMAP_HDR 0

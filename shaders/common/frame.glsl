@@ -41,4 +41,5 @@ const int VIEW_GLINT = 7;
 const int VIEW_FOOTPRINT = 8;
 const int VIEW_TANGENT = 9;
 const int VIEW_ROUGHNESS_METALLIC = 10;
-const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)
+const int VIEW_EXTRA = 11;
+const int VIEW_AO = 13;      // ambient occlusion (shaders/ao/)   // method-specific channel (glintscale, evaluation counters, ...)

@@ -22,6 +22,7 @@ public:
 
 private:
     gl::Program program_;
+    gl::Texture unoccluded_;   // 1 x 1 white: frames without an AO texture (probe captures) are not occluded
 };
 
 }  // namespace glimmer

@@ -44,6 +44,7 @@ struct FrameContext {
     // read probes, probes.enabled = 0) binds none, so the distant environment alone lights the frame.
     const ReflectionProbes* probes = nullptr;
     bool probesActive = false;
+    GLuint ambientOcclusion = 0;             // factor on the environment term (AmbientOcclusion::occlusionTexture)
 };
 
 class Pass {
