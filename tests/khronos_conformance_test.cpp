@@ -233,6 +233,9 @@ glimmer::Camera cameraOnZ(float distance) {
 RenderResult renderFinal(const fs::path& model, const glimmer::Camera& camera, int size = 64, const std::string& env = "none") {
     RenderRequest r = request(model, "final", size, camera);
     r.environment = env;
+    // Ambient occlusion off: the screen-space term darkens the opaque renders that stand in for each glass layer,
+    // and the forward pass of blended surfaces (no G-buffer depth of its own) is not occluded.
+    r.settings.apply("ao.enabled=0");
     return glimmer::renderOffscreen(r);
 }
 

@@ -77,6 +77,9 @@ glm::vec3 meanNormal(const Scene& scene, const Instance& instance) {
 
 std::vector<ProbePlacement> placeReflectionProbes(const Scene& scene, int maxProbes) {
     std::vector<ProbePlacement> probes;
+    // A probe leaves its own object out: with nothing else in the scene it would capture only the sky, which the
+    // distant environment already gives, and its capture would cost six scene renders for nothing.
+    if (scene.instances.size() < 2) return probes;
     for (size_t i = 0; i < scene.instances.size() && int(probes.size()) < maxProbes; ++i) {
         const Instance& instance = scene.instances[i];
         if (instance.material >= scene.materials.size()) continue;

@@ -64,5 +64,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
 
 // Heading for a common parameter group ("" -> "Image", "light" -> "Lights", ...); unknown prefixes as is.
 std::string commonGroupTitle(const std::string& prefix);
+// Common parameters set only with --set or a scene file (bake and sampling settings), not in the panel.
+bool panelHidesParameter(const std::string& name);
 
 }  // namespace glimmer::ui
