@@ -18,6 +18,7 @@ const std::vector<AovInfo>& aovTable() {
         {"tangent", 9, "world-space tangent"},
         {"material", 10, "R alpha, G metallic, B material id"},
         {"extra", 11, "method-specific debug channel (see the method's documentation)"},
+        {"shadow", 12, "visibility of the first light, 0..1 (shadow maps; 0 where the surface faces away from it)"},
         {"glintscale", 11, "wang2020: scale used per pixel, red micro, green meso, blue macro (= its extra view)"},
     };
     return table;

@@ -5,6 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "render/shader_interface.h"
@@ -33,6 +34,8 @@ gl::Texture uploadTexture(const TextureData& data) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene) {
+    static std::atomic<uint64_t> nextId{1};
+    id_ = nextId++;
     for (const MeshData& mesh : scene.meshes) {
         std::vector<Vertex> vertices(mesh.positions.size());
         for (size_t i = 0; i < vertices.size(); ++i) {
@@ -84,7 +87,7 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
 }
 
-void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection) const {
+void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection, bool normalMatrix) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
     drawStats_ = {};
@@ -120,9 +123,11 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
             glCullFace(GL_BACK);
             glFrontFace(glm::determinant(glm::mat3(instance.transform)) < 0.0f ? GL_CW : GL_CCW);
         }
-        glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(instance.transform));
         glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
-        glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        if (normalMatrix) {
+            glm::mat3 normals = glm::inverseTranspose(glm::mat3(instance.transform));
+            glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normals));
+        }
         glUniform1i(2, int(instance.material));
         const int slots[] = {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture,
                              material.occlusionTexture, material.glintMaskTexture};

@@ -4,6 +4,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "gl/handles.h"
@@ -21,8 +22,15 @@ public:
     // Draws every instance with the bound G-buffer program (sets per-draw uniforms at locations 0-4): the chunks
     // whose bounds intersect the frustum of `viewProjection`, back faces culled on single-sided materials (the
     // winding flipped for mirroring transforms). Sets GL_CULL_FACE / glFrontFace per draw and leaves culling off.
-    void drawInstances(const Scene& scene, const glm::mat4& viewProjection) const;
+    // `normalMatrix` false: location 1 is not set (depth-only programs such as the shadow maps' have no normals).
+    void drawInstances(const Scene& scene, const glm::mat4& viewProjection, bool normalMatrix = true) const;
     int lightCount() const { return lightCount_; }
+    // Mesh-space chunks of a mesh (bounds for culling and for the shadow maps' scene bounds).
+    const std::vector<MeshChunk>& meshChunks(uint32_t mesh) const { return meshes_[mesh].chunks; }
+    size_t meshCount() const { return meshes_.size(); }
+    // Unique for the lifetime of the process (never reused by a later GpuScene): caches of rendered geometry
+    // (shadow maps) key on it.
+    uint64_t id() const { return id_; }
 
     struct DrawStats {
         size_t chunksTotal = 0, chunksDrawn = 0;
@@ -42,6 +50,7 @@ private:
     std::vector<gl::Texture> textures_;
     gl::Buffer materials_, lights_;
     int lightCount_ = 0;
+    uint64_t id_ = 0;
     mutable DrawStats drawStats_;
     mutable std::vector<GLsizei> drawCounts_;       // per-draw scratch for glMultiDrawElements
     mutable std::vector<const void*> drawOffsets_;

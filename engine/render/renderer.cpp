@@ -11,9 +11,11 @@
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
+#include "render/passes/shadow_map_pass.h"
 #include "render/passes/tonemap_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
+#include "render/shadow_maps.h"
 
 namespace glimmer {
 
@@ -27,6 +29,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
+    shadowMaps_ = std::make_unique<ShadowMaps>();
     buildPasses();
 }
 
@@ -42,10 +45,14 @@ static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& meth
 
 void Renderer::buildPasses() {
     // Build all first, then swap: a failure leaves the previous passes in place.
+    auto sunShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Sun);
+    auto pointShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Local);
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
+    sunShadowPass_ = std::move(sunShadow);
+    pointShadowPass_ = std::move(pointShadow);
     gbufferPass_ = std::move(gbuffer);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
@@ -71,7 +78,7 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {sunShadowPass_.get(), pointShadowPass_.get(), gbufferPass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
     passes.push_back(tonemapPass_.get());
     return passes;
@@ -196,7 +203,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              environment_, methodResources_.get(), iblResources_.get(),
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
-                             uniforms.viewProjection};
+                             uniforms.viewProjection, shadowMaps_.get()};
+    // Shadow views first (fitted to this camera; only the invalidated ones are rendered), then the G-buffer, so
+    // its draw statistics are the last ones GpuScene keeps.
+    if (!blendSample) shadowMaps_->prepare(scene, gpuScene, camera, float(width) / float(height), settings_);
+    runPass(*sunShadowPass_, frame);
+    runPass(*pointShadowPass_, frame);
     runPass(*gbufferPass_, frame);
     updateMethodData(measurePasses);
     runPass(*lightingPass_, frame);

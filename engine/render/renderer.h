@@ -25,6 +25,8 @@ namespace glimmer {
 
 class GBufferPass;
 class LightingPass;
+class ShadowMapPass;
+class ShadowMaps;
 class TonemapPass;
 class RendererCapture;
 
@@ -86,6 +88,8 @@ public:
     std::vector<float> readGlintEnvironment() const;
     std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
+    // The shadow maps of the last frame: views in use and what the shadow passes rendered (--stats, tests).
+    const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
 
 private:
     void buildPasses();          // every pass and the method's resources; throws, keeping the previous ones
@@ -100,6 +104,8 @@ private:
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
+    std::unique_ptr<ShadowMaps> shadowMaps_;
+    std::unique_ptr<ShadowMapPass> sunShadowPass_, pointShadowPass_;
     std::unique_ptr<GBufferPass> gbufferPass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;

@@ -27,6 +27,21 @@ const std::vector<CommonParam>& commonParams() {
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
+        // Shadows (render/shadow_maps.h, docs/shadows.md).
+        {{"shadow.enabled", 1.0f, 0.0f, 1.0f, "shadow maps for the sun (cascades) and point lights (cube faces), 0 or 1",
+          {}, true}},
+        {{"shadow.map_size", 2048.0f, 256.0f, 4096.0f, "texels per side of each sun cascade", {}, true}},
+        {{"shadow.cascades", 3.0f, 1.0f, 4.0f, "number of sun cascades over shadow.distance", {}, true}},
+        {{"shadow.filter_radius", 1.5f, 0.0f, 4.0f, "PCF filter radius in texels (0: one bilinear compare)"}},
+        {{"shadow.bias", 0.5f, 0.0f, 8.0f, "receiver depth bias towards the light, in texels"}},
+        {{"shadow.normal_bias", 0.5f, 0.0f, 8.0f, "receiver offset along the normal, texels x sin(normal, light)"}},
+        {{"shadow.slope_bias", 3.0f, 0.0f, 16.0f, "slope-scaled depth bias of the casters (glPolygonOffset factor)"}},
+        {{"shadow.distance", 40.0f, 1.0f, 1000.0f, "view depth (m) the sun's cascades cover; beyond it no sun shadow"}},
+        {{"shadow.point_map_size", 512.0f, 64.0f, 2048.0f, "texels per side of each cube face of a point light", {},
+          true}},
+        {{"shadow.cache", 1.0f, 0.0f, 1.0f,
+          "reuse shadow maps while geometry, light and the needed region are unchanged (0: render every frame)", {},
+          true}},
     };
     return params;
 }

@@ -34,6 +34,7 @@ std::string commonGroupTitle(const std::string& prefix) {
     if (prefix == "light") return "Lights";
     if (prefix == "env") return "Environment";
     if (prefix == "material") return "Material overrides (all)";
+    if (prefix == "shadow") return "Shadows";
     return prefix;
 }
 

@@ -8,6 +8,7 @@
 #define BINDING_MATERIALS 2          // storage MaterialBlock
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's parameters (P_<NAME>)
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
+#define BINDING_SHADOWS 6            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadow_maps.cpp)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15
@@ -29,6 +30,8 @@
 #define UNIT_IBL_FIRST 16            // IBL modes: 16..23
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
+#define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)
+#define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces (and later spot lights)
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

@@ -40,3 +40,4 @@ const int VIEW_FOOTPRINT = 8;
 const int VIEW_TANGENT = 9;
 const int VIEW_ROUGHNESS_METALLIC = 10;
 const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)
+const int VIEW_SHADOW = 12;  // visibility of the first light (shadow maps; 0 where the surface faces away)

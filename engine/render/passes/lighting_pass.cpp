@@ -2,6 +2,7 @@
 
 #include "gl/pipeline_state.h"
 #include "common/bindings.glsl"
+#include "render/shadow_maps.h"
 
 namespace glimmer {
 
@@ -40,6 +41,7 @@ void LightingPass::execute(const FrameContext& frame) {
     if (frame.methodResources) frame.methodResources->bind();
     if (frame.iblResources) frame.iblResources->bind();
     frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
+    frame.shadows->bind();   // per-light visibility (common/shadows.glsl)
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());

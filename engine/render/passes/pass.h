@@ -18,6 +18,8 @@
 
 namespace glimmer {
 
+class ShadowMaps;
+
 // Everything a pass may read in one frame. The frame's uniform blocks (frame, method and IBL parameters) are
 // bound before the first pass (shaders/common/bindings.glsl).
 struct FrameContext {
@@ -36,6 +38,7 @@ struct FrameContext {
     float blendWeight;
     GLuint emptyVao;                         // for full-screen triangles
     glm::mat4 viewProjection;                // of this frame (geometry passes cull against it)
+    ShadowMaps* shadows;                     // the lights' shadow maps, fitted for this frame (render/shadow_maps.h)
 };
 
 class Pass {
