@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -326,6 +327,7 @@ TEST(Shadows, SubTexelCameraTranslationDoesNotMoveTheShadowEdge) {
         }
         camera = moved;
     }
+    std::printf("[ shadow edge ] largest move against the ground: %.3f px over %d rows\n", worst, rows);
     EXPECT_GT(rows, 100) << "the shadow's left edge should cross most rows of the band";
     EXPECT_LE(worst, 0.5) << "the shadow edge moved against the ground by " << worst << " px";
 }

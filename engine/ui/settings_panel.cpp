@@ -31,16 +31,18 @@ ParamSpec moveSpeedSpec() {
 
 std::string commonGroupTitle(const std::string& prefix) {
     if (prefix.empty()) return "Image";
-    if (prefix == "light") return "Lights";
+    if (prefix == "light" || prefix == "shadow") return "Lights";   // one section for both (prefixOf)
     if (prefix == "env") return "Environment";
     if (prefix == "material") return "Material overrides (all)";
-    if (prefix == "shadow") return "Shadows";
     return prefix;
 }
 
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
-    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+    std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
+    // The shadow.* parameters share the lights' section: one more section header would push the last one off
+    // a 720-line window (PanelFit).
+    return prefix == "shadow" ? "light" : prefix;
 }
 
 PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls& window, float x, float y,
