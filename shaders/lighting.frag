@@ -8,7 +8,9 @@
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
+#ifdef SHADOWS
 #include "common/shadows.glsl"
+#endif
 
 #ifdef GLINT_POST_PASS
 // Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
@@ -125,7 +127,11 @@ void main() {
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
         // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
+#ifdef SHADOWS
         float visibility = lightVisibility(i, u_lights[i].vectorType.xyz, position, s.n, towardLight);
+#else
+        float visibility = 1.0;   // shadow.enabled=0 (render/passes/lighting_pass.h)
+#endif
         if (i == 0) firstLightVisibility = visibility;
         if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
         irradiance *= visibility;

@@ -48,7 +48,8 @@ void Renderer::buildPasses() {
     auto sunShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Sun);
     auto pointShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Local);
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
-    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl,
+                                                   settings_.common_("shadow.enabled") > 0.5f);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
     sunShadowPass_ = std::move(sunShadow);
@@ -57,6 +58,7 @@ void Renderer::buildPasses() {
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
     tonemapPass_ = std::move(tonemap);
+    shadowMaps_->invalidate();   // the maps were drawn by the previous depth program
     createMethodResources();
 }
 
@@ -103,6 +105,7 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
         try {
             gl::Program fresh(shaderRoot_, program->desc());
             *program = std::move(fresh);  // swap only after a successful link
+            if (name == "shadow_depth") shadowMaps_->invalidate();
             shaderErrors_.erase(name);
             shaderErrors_.erase("all programs");
             rebuilt.push_back(name);
@@ -114,13 +117,20 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
+    const bool shadows = settings.common_("shadow.enabled") > 0.5f;
     const bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
-    if (!methodChanged) {
+    if (!methodChanged && shadows == lightingPass_->shadows()) {
         settings_ = settings;
         return;
     }
+    if (!methodChanged) {   // shadows toggled: only the lighting program changes
+        auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl, shadows);
+        settings_ = settings;
+        lightingPass_ = std::move(lighting);
+        return;
+    }
     // Build the new method's passes first: a failure keeps the previous method running.
-    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl);
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl, shadows);
     auto methodPasses = methodPassesOf(findGlintMethod(settings.method), shaderRoot_);
     const std::string previousName = lightingPass_->programs().front()->desc().name;
     settings_ = settings;

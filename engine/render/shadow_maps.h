@@ -73,6 +73,8 @@ public:
                  const RenderSettings& settings);
     // The shadow block and both depth arrays, for the lighting pass (units and binding in common/bindings.glsl).
     void bind() const;
+    // Forgets every cached map (the next prepare() marks every view dirty): after the depth program was rebuilt.
+    void invalidate() { contentKey_ = 0; }
 
     const ShadowSettings& settings() const { return settings_; }
     std::vector<ShadowView>& views() { return views_; }

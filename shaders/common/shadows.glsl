@@ -28,25 +28,22 @@ layout(binding = UNIT_SHADOW_LOCAL) uniform sampler2DArrayShadow s_shadowLocal;
 // Tap offsets of the PCF kernel in texels for `radius`; the reach is radius + 1 texel (the bilinear tent).
 vec2 shadowTapOffset(int i, int j, float radius) { return (vec2(i, j) - 1.5) * (radius * (2.0 / 3.0)); }
 
-// 4 x 4 taps, after a 5-tap test (the corners and the centre): when all five agree the point is fully lit or
-// fully shadowed and the other 12 are skipped (most pixels; exact 0 or 1 there). A caster narrower than about a
-// texel between the corners and off the centre is missed by the test: a sub-texel penumbra detail, not a leak.
-#define SHADOW_PCF_BODY(MAP)                                                                                   \
-    if (radius <= 0.0) return texture(MAP, vec4(uv, layer, depth));                                          \
-    float corners = texture(MAP, vec4(uv + shadowTapOffset(0, 0, radius) * texel, layer, depth)) +            \
-                    texture(MAP, vec4(uv + shadowTapOffset(3, 0, radius) * texel, layer, depth)) +            \
-                    texture(MAP, vec4(uv + shadowTapOffset(0, 3, radius) * texel, layer, depth)) +            \
-                    texture(MAP, vec4(uv + shadowTapOffset(3, 3, radius) * texel, layer, depth)) +            \
-                    texture(MAP, vec4(uv, layer, depth));                                                     \
-    if (corners == 0.0 || corners == 5.0) return corners * 0.2;                                               \
-    float sum = 0.0;                                                                                          \
-    for (int j = 0; j < 4; ++j)                                                                               \
-        for (int i = 0; i < 4; ++i)                                                                           \
-            sum += texture(MAP, vec4(uv + shadowTapOffset(i, j, radius) * texel, layer, depth));              \
+// llvmpipe runs both sides of every branch (masked), so the lookups are written branch-free: one kernel per array
+// and light, no early out.
+float shadowPcfSun(vec2 uv, float layer, float depth, float texel, float radius) {
+    float sum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            sum += texture(s_shadowSun, vec4(uv + shadowTapOffset(i, j, radius) * texel, layer, depth));
     return sum * (1.0 / 16.0);
-
-float shadowPcfSun(vec2 uv, float layer, float depth, float texel, float radius) { SHADOW_PCF_BODY(s_shadowSun) }
-float shadowPcfLocal(vec2 uv, float layer, float depth, float texel, float radius) { SHADOW_PCF_BODY(s_shadowLocal) }
+}
+float shadowPcfLocal(vec2 uv, float layer, float depth, float texel, float radius) {
+    float sum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            sum += texture(s_shadowLocal, vec4(uv + shadowTapOffset(i, j, radius) * texel, layer, depth));
+    return sum * (1.0 / 16.0);
+}
 
 // The receiver point moved by the biases for a view whose texel measures `texel` metres here.
 vec3 shadowReceiver(vec3 position, vec3 normal, vec3 towardLight, float texel) {
@@ -61,31 +58,37 @@ float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, v
     if (u_shadowFilter.w < 0.5 || index >= MAX_SHADOW_LIGHTS) return 1.0;
     ivec4 record = u_shadowLights[index];
     float radius = u_shadowFilter.x;
+    // First the view and the receiver's map coordinates (arithmetic only), then one filtered lookup.
+    int view = -1;
+    vec3 coord = vec3(0.0);   // uv, depth
     if (record.x == SHADOW_CASCADES) {
         // The first cascade whose square holds the point with the filter's reach to spare (the cascades are
         // ordered near to far and cached squares may be larger than needed).
         float guard = (radius + 2.0) * u_shadowMapSizes.x;
-        for (int k = 0; k < record.z; ++k) {
+        for (int k = record.z - 1; k >= 0; --k) {
             int v = record.y + k;
             vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[v].x);
             vec3 clip = (u_shadowViews[v] * vec4(p, 1.0)).xyz;
             vec2 uv = clip.xy * 0.5 + 0.5;
-            if (all(greaterThanEqual(uv, vec2(guard))) && all(lessThanEqual(uv, vec2(1.0 - guard))))
-                return shadowPcfSun(uv, u_shadowViewInfo[v].y, clip.z, u_shadowMapSizes.x, radius);
+            if (all(greaterThanEqual(uv, vec2(guard))) && all(lessThanEqual(uv, vec2(1.0 - guard)))) {
+                view = v;
+                coord = vec3(uv, clip.z);
+            }
         }
-        return 1.0;   // beyond shadow.distance
+        if (view < 0) return 1.0;   // beyond shadow.distance
+        return shadowPcfSun(coord.xy, u_shadowViewInfo[view].y, coord.z, u_shadowMapSizes.x, radius);
     }
     if (record.x == SHADOW_CUBE) {
         // The face of the major axis (faces are a little wider than 90 degrees: the filter stays on the face).
         vec3 d = position - lightVector;
         vec3 a = abs(d);
         int face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : (a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5));
-        int v = record.y + face;
+        view = record.y + face;
         float depth = max(a.x, max(a.y, a.z));
-        vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[v].x * depth);
-        vec4 clip = u_shadowViews[v] * vec4(p, 1.0);
+        vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[view].x * depth);
+        vec4 clip = u_shadowViews[view] * vec4(p, 1.0);
         vec3 ndc = clip.xyz / clip.w;
-        return shadowPcfLocal(ndc.xy * 0.5 + 0.5, u_shadowViewInfo[v].y, ndc.z, u_shadowMapSizes.y, radius);
+        return shadowPcfLocal(ndc.xy * 0.5 + 0.5, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
     }
     return 1.0;
 }

@@ -6,7 +6,7 @@
 
 namespace glimmer {
 
-gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId) {
+gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows) {
     const GlintMethod& method = findGlintMethod(methodId);
     const IblMode& ibl = findIblMode(iblId);
     checkIblModeMethod(ibl, method.id);
@@ -15,6 +15,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     desc.defines = {method.define, ibl.define};
     if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
+    if (shadows) desc.defines.push_back("SHADOWS");
     desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
     desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
@@ -22,8 +23,8 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
 }
 
 LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const std::string& methodId,
-                           const std::string& iblId)
-    : program_(shaderRoot, lightingProgramDesc(methodId, iblId)) {}
+                           const std::string& iblId, bool shadows)
+    : program_(shaderRoot, lightingProgramDesc(methodId, iblId, shadows)), shadows_(shadows) {}
 
 void LightingPass::execute(const FrameContext& frame) {
     const bool glintTargets = findGlintMethod(frame.settings.method).glintPostPass;
