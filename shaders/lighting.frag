@@ -8,6 +8,9 @@
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
+#ifdef SHADOWS
+#include "common/shadows.glsl"
+#endif
 
 #ifdef GLINT_POST_PASS
 // Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
@@ -165,6 +168,7 @@ void main() {
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
     float firstLightD = 0.0;
+    float firstLightVisibility = 0.0;
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
     vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
     int lightCount = int(u_exposure.y);
@@ -173,6 +177,16 @@ void main() {
         lightIncidence(u_lights[i], position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
+        // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
+        // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
+#ifdef SHADOWS
+        float visibility = lightVisibility(i, u_lights[i].vectorType.xyz, position, s.n, towardLight);
+#else
+        float visibility = 1.0;   // shadow.enabled=0 (render/passes/lighting_pass.h)
+#endif
+        if (i == 0) firstLightVisibility = visibility;
+        if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
+        irradiance *= visibility;
         vec3 h = normalize(wi + wo);
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
@@ -209,6 +223,7 @@ void main() {
         case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
         case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
         case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
+        case VIEW_SHADOW: result = vec4(vec3(firstLightVisibility), 1.0); break;
         default: result = vec4(radiance, 1.0); break;
     }
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);

@@ -14,6 +14,12 @@ void PipelineState::apply() const {
     glDepthMask(depthWrite ? GL_TRUE : GL_FALSE);
     if (cull) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
     glCullFace(cullFace);
+    if (polygonOffset != glm::vec2(0.0f)) {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(polygonOffset.x, polygonOffset.y);
+    } else {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
     glDisable(GL_BLEND);   // every draw buffer
     if (blend.enabled) {
         if (blend.onlyDrawBuffer >= 0) glEnablei(GL_BLEND, GLuint(blend.onlyDrawBuffer)); else glEnable(GL_BLEND);

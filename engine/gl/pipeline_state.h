@@ -24,6 +24,9 @@ struct PipelineState {
     bool cull = false;
     GLenum cullFace = GL_BACK;
     BlendState blend;
+    // glPolygonOffset(factor, units) on filled polygons; (0, 0) turns it off. Shadow maps push casters away from
+    // the light (negative in reversed Z) by their depth slope.
+    glm::vec2 polygonOffset{0.0f};
 
     // Binds the framebuffer and sets every field above, plus the state no pass changes: clip control
     // (lower-left, zero-to-one), colour writes on, no scissor, no stencil.

@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "render/shader_interface.h"
@@ -112,7 +113,7 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
 }
 
-void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward) const {
+void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix) const {
     const Material& material = scene.materials[instance.material];
     // A transform with negative determinant mirrors the mesh, which turns counter-clockwise front faces clockwise
     // on screen (glTF 3.5.2 instantiation). The front face is set for two-sided materials too, so that
@@ -124,9 +125,11 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
     }
-    glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(instance.transform));
     glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
-    glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    if (normalMatrix) {   // depth-only programs (shadow maps) have no normals
+        glm::mat3 normals = glm::inverseTranspose(glm::mat3(instance.transform));
+        glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normals));
+    }
     glUniform1i(2, int(instance.material));
     const int slots[] = {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture,
                          material.occlusionTexture, material.glintMaskTexture, material.emissiveTexture};
@@ -175,7 +178,8 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
             rangeEnd = chunk.firstIndex + chunk.indexCount;
         }
         if (drawCounts_.empty()) continue;
-        bindInstance(scene, instance, selection == DrawSelection::OpaqueEmissive);
+        bindInstance(scene, instance, selection == DrawSelection::OpaqueEmissive,
+                     selection != DrawSelection::OpaqueDepthOnly);
         glBindVertexArray(mesh.vao.id());
         glMultiDrawElements(GL_TRIANGLES, drawCounts_.data(), GL_UNSIGNED_INT, drawOffsets_.data(),
                             GLsizei(drawCounts_.size()));
@@ -207,7 +211,7 @@ void GpuScene::drawBlendedBackToFront(const Scene& scene, const glm::mat4& viewP
     for (const Draw& draw : draws) {
         const Instance& instance = scene.instances[draw.instance];
         if (draw.instance != bound) {
-            bindInstance(scene, instance, true);
+            bindInstance(scene, instance, true, true);
             glBindVertexArray(meshes_[instance.mesh].vao.id());
             bound = draw.instance;
         }

@@ -4,6 +4,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 #include "gl/handles.h"
@@ -14,8 +15,9 @@ namespace glimmer {
 
 // Which instances a geometry pass draws: the G-buffer takes every material that is not blended; the emissive pass
 // the non-blended emissive ones (again, depth-tested against the G-buffer's depth); blended materials are drawn
-// by drawBlendedBackToFront only.
-enum class DrawSelection { Opaque, OpaqueEmissive };
+// by drawBlendedBackToFront only; depth-only programs (the shadow maps') the non-blended ones without setting the
+// normal matrix (location 1), which they do not have.
+enum class DrawSelection { Opaque, OpaqueEmissive, OpaqueDepthOnly };
 
 class GpuScene {
 public:
@@ -35,7 +37,11 @@ public:
     bool hasBlended() const { return hasBlended_; }
     bool hasOpaqueEmissive() const { return hasOpaqueEmissive_; }
     int lightCount() const { return lightCount_; }
-    // Unique per GpuScene built in this process: geometry never changes under one serial (baked data keys on it).
+    // Mesh-space chunks of a mesh (bounds for culling and for the shadow maps' scene bounds).
+    const std::vector<MeshChunk>& meshChunks(uint32_t mesh) const { return meshes_[mesh].chunks; }
+    size_t meshCount() const { return meshes_.size(); }
+    // Unique per GpuScene built in this process: geometry never changes under one serial (baked data and the
+    // shadow maps' cache key on it).
     uint64_t serial() const { return serial_; }
 
     struct DrawStats {
@@ -48,7 +54,7 @@ public:
 private:
     // Binds the instance's uniforms (locations 0-4; `forward` adds the emission at 5 and the emissive texture),
     // textures and cull / front-face state.
-    void bindInstance(const Scene& scene, const Instance& instance, bool forward) const;
+    void bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix) const;
     struct MeshBuffers {
         gl::VertexArray vao;
         gl::Buffer vertices, indices;

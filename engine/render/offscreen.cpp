@@ -9,6 +9,7 @@
 #include "glints/methods.h"
 #include "render/aov.h"
 #include "render/image/supersample.h"
+#include "render/shadow_maps.h"
 #include "scene/scene_loader.h"
 
 namespace glimmer {
@@ -57,6 +58,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     // Monte Carlo IBL modes: each frame is the mean of `spp` estimates (sample 0 renders the G-buffer).
     const int samples = renderer_->accumulating() ? request.spp : 1;
     std::vector<double> frameMs, frameCpuMs;
+    std::vector<PassTiming> firstPasses;   // the first frame renders every shadow map; later ones reuse them
     // Process CPU time (every thread, llvmpipe's rasterizer workers included): on a software renderer sharing
     // the machine with other work it is far steadier than the wall clock.
     auto processCpuMs = [] {
@@ -76,6 +78,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         glFinish();
         frameMs.push_back(clock.elapsedMs());
         frameCpuMs.push_back(processCpuMs() - cpuStart);
+        if (frame == 0) firstPasses = renderer_->passTimings();
     }
     RenderResult result;
     result.width = request.width;
@@ -83,9 +86,13 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     result.hdr = renderer_->readHdr();
     result.display = renderer_->readDisplay();
 
-    nlohmann::json passes = nlohmann::json::array();
-    for (const PassTiming& t : renderer_->passTimings())
-        passes.push_back({{"name", t.name}, {"wall_ms", t.wallMs}, {"gpu_timer_ms", t.gpuMs}});
+    auto passList = [](const std::vector<PassTiming>& timings) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const PassTiming& t : timings)
+            list.push_back({{"name", t.name}, {"wall_ms", t.wallMs}, {"gpu_timer_ms", t.gpuMs}});
+        return list;
+    };
+    nlohmann::json passes = passList(renderer_->passTimings());
     std::string rendererName = context_->rendererString();
     bool software = rendererName.find("llvmpipe") != std::string::npos || rendererName.find("softpipe") != std::string::npos;
     std::string aovName = "final";
@@ -115,6 +122,9 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
                                       : 0.0f}}},
         {"passes", passes},
         {"frame_ms", frameMs.back()},
+        {"frames_ms", frameMs},
+        {"frames_cpu_ms", frameCpuMs},
+        {"first_frame_passes", passList(firstPasses)},
         {"frame_cpu_ms", frameCpuMs.back()},
         {"frames", frameMs.size()},
         {"frame_ms_each", frameMs},   // frame 0 includes on-demand work (e.g. the reflection probes' capture)
@@ -129,6 +139,13 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"gbuffer_draw", {{"chunks", gpuScene_->lastDrawStats().chunksTotal},
                           {"chunks_drawn", gpuScene_->lastDrawStats().chunksDrawn},
                           {"triangles_drawn", gpuScene_->lastDrawStats().trianglesDrawn}}},
+        // The last frame's shadow passes: views in use, views re-rendered (0 when every map was cached), and the
+        // triangles they drew after culling each view's chunks.
+        {"shadows", {{"enabled", renderer_->shadowMaps().settings().enabled},
+                     {"views", renderer_->shadowMaps().stats().views},
+                     {"sun_views_rendered", renderer_->shadowMaps().stats().sunViewsRendered},
+                     {"point_views_rendered", renderer_->shadowMaps().stats().localViewsRendered},
+                     {"triangles_drawn", renderer_->shadowMaps().stats().trianglesDrawn}}},
     };
     return result;
 }

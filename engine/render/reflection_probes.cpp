@@ -110,7 +110,9 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
     const RenderSettings defaults;
     if (!gbuffer_) {
         gbuffer_ = std::make_unique<GBufferPass>(shaderRoot_);
-        lighting_ = std::make_unique<LightingPass>(shaderRoot_, defaults.method, defaults.ibl);
+        // Without shadow lookups: the shadow maps are fitted to the main camera, not to a probe's six faces, so a
+        // capture sees direct light unshadowed (docs/reflection_probes.md).
+        lighting_ = std::make_unique<LightingPass>(shaderRoot_, defaults.method, defaults.ibl, /*shadows=*/false);
         prefilter_ = std::make_unique<CubePrefilter>(shaderRoot_);
         frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
         methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);

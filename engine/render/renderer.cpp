@@ -17,6 +17,7 @@
 #include "render/passes/bloom_pass.h"
 #include "render/passes/exposure_pass.h"
 #include "render/passes/taa_pass.h"
+#include "render/passes/shadow_map_pass.h"
 #include "render/passes/tonemap_pass.h"
 #include "render/image/halton_jitter.h"
 #include "render/passes/emissive_pass.h"
@@ -24,6 +25,7 @@
 #include "render/passes/transparent_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
+#include "render/shadow_maps.h"
 
 namespace glimmer {
 
@@ -39,6 +41,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
     probes_ = std::make_unique<ReflectionProbes>(shaderRoot_);
     ambientOcclusion_ = std::make_unique<AmbientOcclusion>();
+    shadowMaps_ = std::make_unique<ShadowMaps>();
     buildPasses();
 }
 
@@ -54,10 +57,13 @@ static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& meth
 
 void Renderer::buildPasses() {
     // Build all first, then swap: a failure leaves the previous passes in place.
+    auto sunShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Sun);
+    auto pointShadow = std::make_unique<ShadowMapPass>(shaderRoot_, ShadowArray::Local);
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
     auto gtao = std::make_unique<GtaoPass>(shaderRoot_, *ambientOcclusion_);
     auto aoResolve = std::make_unique<AoResolvePass>(shaderRoot_, *ambientOcclusion_);
-    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl,
+                                                   settings_.common_("shadow.enabled") > 0.5f);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
     auto taa = std::make_unique<TaaPass>(shaderRoot_);
     auto exposure = std::make_unique<ExposurePass>(shaderRoot_);
@@ -66,6 +72,8 @@ void Renderer::buildPasses() {
     auto forwardTarget = std::make_shared<ForwardTarget>();
     auto emissive = std::make_unique<EmissivePass>(shaderRoot_, forwardTarget);
     auto transparent = std::make_unique<TransparentPass>(shaderRoot_, forwardTarget);
+    sunShadowPass_ = std::move(sunShadow);
+    pointShadowPass_ = std::move(pointShadow);
     forwardRestorePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Restore);
     forwardSavePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Save);
     forwardTarget_ = std::move(forwardTarget);
@@ -80,6 +88,7 @@ void Renderer::buildPasses() {
     taaPass_ = std::move(taa);
     exposurePass_ = std::move(exposure);
     bloomPass_ = std::move(bloom);
+    shadowMaps_->invalidate();   // the maps were drawn by the previous depth program
     createMethodResources();
 }
 
@@ -102,7 +111,9 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), gtaoPass_.get(), aoResolvePass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {sunShadowPass_.get(),  pointShadowPass_.get(),    gbufferPass_.get(),
+                                 gtaoPass_.get(),       aoResolvePass_.get(),      forwardRestorePass_.get(),
+                                 lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
     passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(),
                                  taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
@@ -129,8 +140,10 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
         // changed its parameters (P_<NAME> block) since it was built.
         const bool lighting = program == lightingPass_->programs().front();
         try {
-            gl::Program fresh(shaderRoot_, lighting ? lightingProgramDesc(settings_.method, settings_.ibl) : program->desc());
+            gl::Program fresh(shaderRoot_, lighting ? lightingProgramDesc(settings_.method, settings_.ibl, lightingPass_->shadows())
+                                                    : program->desc());
             *program = std::move(fresh);  // swap only after a successful link
+            if (name == "shadow_depth") shadowMaps_->invalidate();
             shaderErrors_.erase(name);
             shaderErrors_.erase("all programs");
             rebuilt.push_back(name);
@@ -143,17 +156,24 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
+    const bool shadows = settings.common_("shadow.enabled") > 0.5f;
     const bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
     // Any edit is a cut for TAA: the history shows the old image.
     if (methodChanged || settings.common != settings_.common || settings.methods != settings_.methods ||
         settings.debugView != settings_.debugView || settings.iblValues != settings_.iblValues)
         taaPass_->reset();
-    if (!methodChanged) {
+    if (!methodChanged && shadows == lightingPass_->shadows()) {
         settings_ = settings;
         return;
     }
+    if (!methodChanged) {   // shadows toggled: only the lighting program changes
+        auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl, shadows);
+        settings_ = settings;
+        lightingPass_ = std::move(lighting);
+        return;
+    }
     // Build the new method's passes first: a failure keeps the previous method running.
-    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl);
+    auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings.method, settings.ibl, shadows);
     auto methodPasses = methodPassesOf(findGlintMethod(settings.method), shaderRoot_);
     const std::string previousName = lightingPass_->programs().front()->desc().name;
     settings_ = settings;
@@ -267,7 +287,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
                              uniforms.viewProjection,
-                             temporalAa, probes_.get(), probesActive, ambientOcclusion_->occlusionTexture()};
+                             temporalAa, probes_.get(), probesActive, ambientOcclusion_->occlusionTexture(),
+                             shadowMaps_.get()};
+    // Shadow views first (fitted to this camera; only the invalidated ones are rendered).
+    if (!blendSample) shadowMaps_->prepare(scene, gpuScene, camera, float(width) / float(height), settings_);
+    runPass(*sunShadowPass_, frame);
+    runPass(*pointShadowPass_, frame);
     runPass(*gbufferPass_, frame);
     runPass(*gtaoPass_, frame);
     runPass(*aoResolvePass_, frame);

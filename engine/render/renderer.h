@@ -33,6 +33,8 @@ class LightingPass;
 class TaaPass;
 class ExposurePass;
 class BloomPass;
+class ShadowMapPass;
+class ShadowMaps;
 class TonemapPass;
 class ForwardTarget;
 class RendererCapture;
@@ -98,6 +100,8 @@ public:
     std::vector<float> readGlintEnvironment() const;
     std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
+    // The shadow maps of the last frame: views in use and what the shadow passes rendered (--stats, tests).
+    const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
 
     // The image pipeline (docs/image.md). Auto exposure moves towards each frame's metered value with this
     // weight (1: at once, the offscreen default; the window passes 1 - exp(-dt / time constant)).
@@ -121,6 +125,8 @@ private:
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
+    std::unique_ptr<ShadowMaps> shadowMaps_;
+    std::unique_ptr<ShadowMapPass> sunShadowPass_, pointShadowPass_;
     std::unique_ptr<GBufferPass> gbufferPass_;
     std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes
     std::unique_ptr<GtaoPass> gtaoPass_;

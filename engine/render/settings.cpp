@@ -70,6 +70,21 @@ const std::vector<CommonParam>& commonParams() {
         {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
         {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
         {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
+        // Shadows (render/shadow_maps.h, docs/shadows.md).
+        {{"shadow.enabled", 1.0f, 0.0f, 1.0f, "shadow maps for the sun (cascades) and point lights (cube faces), 0 or 1",
+          {}, true}},
+        {{"shadow.map_size", 2048.0f, 256.0f, 4096.0f, "texels per side of each sun cascade", {}, true}},
+        {{"shadow.cascades", 3.0f, 1.0f, 4.0f, "number of sun cascades over shadow.distance", {}, true}},
+        {{"shadow.filter_radius", 1.5f, 0.0f, 4.0f, "PCF filter radius in texels (0: one bilinear compare)"}},
+        {{"shadow.bias", 0.5f, 0.0f, 8.0f, "receiver depth bias towards the light, in texels"}},
+        {{"shadow.normal_bias", 0.5f, 0.0f, 8.0f, "receiver offset along the normal, texels x sin(normal, light)"}},
+        {{"shadow.slope_bias", 3.0f, 0.0f, 16.0f, "slope-scaled depth bias of the casters (glPolygonOffset factor)"}},
+        {{"shadow.distance", 40.0f, 1.0f, 1000.0f, "view depth (m) the sun's cascades cover; beyond it no sun shadow"}},
+        {{"shadow.point_map_size", 512.0f, 64.0f, 2048.0f, "texels per side of each cube face of a point light", {},
+          true}},
+        {{"shadow.cache", 1.0f, 0.0f, 1.0f,
+          "reuse shadow maps while geometry, light and the needed region are unchanged (0: render every frame)", {},
+          true}},
     };
     return params;
 }

@@ -48,11 +48,13 @@ std::string commonGroupTitle(const std::string& prefix) {
 
 // Parameters of the sky-visibility bake: each change re-bakes the scene for seconds, so they are set with
 // --set (or a scene file), not dragged; the panel then has room for the interactive ones at 1280x720.
-// The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce).
+// The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce), and the shadow
+// maps' sizes and cache switch.
 bool panelHidesParameter(const std::string& name) {
     static const char* const names[] = {"ao.sky_cell", "ao.sky_rays", "ao.slices",      "ao.steps",
                                         "ao.falloff",  "ao.denoise",  "ao.multibounce", "ssaa.factor",
-                                        "taa.glint_history", "taa.stable_glints"};
+                                        "taa.glint_history", "taa.stable_glints", "shadow.map_size",
+                                        "shadow.point_map_size", "shadow.cache"};
     for (const char* n : names)
         if (name == n) return true;
     return false;
@@ -60,7 +62,10 @@ bool panelHidesParameter(const std::string& name) {
 
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
-    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+    std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
+    // The shadow.* parameters share the lights' section: one more section header would push the last one off
+    // a 720-line window (PanelFit).
+    return prefix == "shadow" ? "light" : prefix;
 }
 
 PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls& window, float x, float y,

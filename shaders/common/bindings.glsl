@@ -8,6 +8,7 @@
 #define BINDING_MATERIALS 2          // storage MaterialBlock
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's parameters (P_<NAME>)
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
+#define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
 #define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/reflection_probes.h)
@@ -34,6 +35,8 @@
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
 #define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
 #define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
+#define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)
+#define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces (and later spot lights)
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

@@ -3,10 +3,11 @@
 #include "gl/pipeline_state.h"
 #include "common/bindings.glsl"
 #include "render/reflection_probes.h"
+#include "render/shadow_maps.h"
 
 namespace glimmer {
 
-gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId) {
+gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows) {
     const GlintMethod& method = findGlintMethod(methodId);
     const IblMode& ibl = findIblMode(iblId);
     checkIblModeMethod(ibl, method.id);
@@ -15,6 +16,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     desc.defines = {method.define, ibl.define};
     if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
+    if (shadows) desc.defines.push_back("SHADOWS");
     desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
     desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
@@ -22,8 +24,8 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
 }
 
 LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const std::string& methodId,
-                           const std::string& iblId)
-    : program_(shaderRoot, lightingProgramDesc(methodId, iblId)) {}
+                           const std::string& iblId, bool shadows)
+    : program_(shaderRoot, lightingProgramDesc(methodId, iblId, shadows)), shadows_(shadows) {}
 
 void LightingPass::execute(const FrameContext& frame) {
     const bool glintTargets = findGlintMethod(frame.settings.method).glintPostPass;
@@ -43,6 +45,7 @@ void LightingPass::execute(const FrameContext& frame) {
     if (frame.iblResources) frame.iblResources->bind();
     frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
     if (frame.probes) frame.probes->bind(frame.probesActive);
+    if (shadows_) frame.shadows->bind();   // per-light visibility (common/shadows.glsl)
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());

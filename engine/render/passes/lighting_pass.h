@@ -11,11 +11,15 @@
 namespace glimmer {
 
 // The lighting program of a method and an IBL mode (defines, generated parameter blocks, included files).
-gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId);
+// `shadows`: compiled with the shadow lookups (SHADOWS); without, every light's visibility is the constant 1, so
+// shadow.enabled=0 runs today's shader (llvmpipe executes both sides of a branch: a runtime switch would not).
+gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows = true);
 
 class LightingPass : public Pass {
 public:
-    LightingPass(const std::filesystem::path& shaderRoot, const std::string& methodId, const std::string& iblId);
+    LightingPass(const std::filesystem::path& shaderRoot, const std::string& methodId, const std::string& iblId,
+                 bool shadows);
+    bool shadows() const { return shadows_; }
     const char* name() const override { return "lighting"; }
     std::vector<gl::Program*> programs() override { return {&program_}; }
     void execute(const FrameContext& frame) override;
@@ -23,6 +27,7 @@ public:
 private:
     gl::Program program_;
     gl::Texture unoccluded_;   // 1 x 1 white: frames without an AO texture (probe captures) are not occluded
+    bool shadows_;
 };
 
 }  // namespace glimmer

@@ -19,6 +19,7 @@
 namespace glimmer {
 
 class ReflectionProbes;
+class ShadowMaps;
 
 // Everything a pass may read in one frame. The frame's uniform blocks (frame, method and IBL parameters) are
 // bound before the first pass (shaders/common/bindings.glsl).
@@ -45,6 +46,7 @@ struct FrameContext {
     const ReflectionProbes* probes = nullptr;
     bool probesActive = false;
     GLuint ambientOcclusion = 0;             // factor on the environment term (AmbientOcclusion::occlusionTexture)
+    ShadowMaps* shadows = nullptr;           // the lights' shadow maps, fitted for this frame (render/shadow_maps.h)
 };
 
 class Pass {

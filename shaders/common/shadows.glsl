@@ -1,0 +1,94 @@
+// Visibility of a light from a surface point, from the shadow maps of render/shadow_maps.h (fitted on the CPU,
+// rendered by render/passes/shadow_map_pass.cpp). Every shadow is a set of views, each one layer of a 2D depth
+// array (reversed Z: 1 nearest the light): the sun's cascades (orthographic) in s_shadowSun, the six cube faces
+// of a point light (perspective) in s_shadowLocal, where a spot light's single view will go too.
+// Bias (docs/shadows.md): the receiver moves along its normal by normal_bias texels x sin(normal, light) (Holbert
+// 2011, "normal offset shadows"; it gives a depth margin of normal_bias texels x tan) and towards the light by
+// bias texels; the casters carry a slope-scaled depth offset (glPolygonOffset, shadow.slope_bias).
+// Filter: 4 x 4 hardware bilinear compares spread evenly over +-radius texels (percentage-closer filtering,
+// Reeves et al. 1987); at radius 1.5 the taps are one texel apart and their tents overlap into one smooth kernel.
+#include "common/bindings.glsl"
+
+#define MAX_SHADOW_VIEWS 64     // render/shadow_maps.h kMaxShadowViews
+#define MAX_SHADOW_LIGHTS 64    // kMaxShadowLights
+const int SHADOW_NONE = 0;
+const int SHADOW_CASCADES = 1;
+const int SHADOW_CUBE = 2;
+
+layout(std140, binding = BINDING_SHADOWS) uniform ShadowBlock {
+    mat4 u_shadowViews[MAX_SHADOW_VIEWS];      // world -> clip of each view
+    vec4 u_shadowViewInfo[MAX_SHADOW_VIEWS];   // x texel size (m; perspective: per m of depth), y layer, z perspective, w array
+    ivec4 u_shadowLights[MAX_SHADOW_LIGHTS];   // per light: x kind, y first view, z view count
+    vec4 u_shadowFilter;                       // x PCF radius, y normal bias, z depth bias (texels), w 1 when on
+    vec4 u_shadowMapSizes;                     // x 1 / sun size, y 1 / local size, z sun size, w local size
+};
+layout(binding = UNIT_SHADOW_SUN) uniform sampler2DArrayShadow s_shadowSun;
+layout(binding = UNIT_SHADOW_LOCAL) uniform sampler2DArrayShadow s_shadowLocal;
+
+// Tap offsets of the PCF kernel in texels for `radius`; the reach is radius + 1 texel (the bilinear tent).
+vec2 shadowTapOffset(int i, int j, float radius) { return (vec2(i, j) - 1.5) * (radius * (2.0 / 3.0)); }
+
+// llvmpipe runs both sides of every branch (masked), so the lookups are written branch-free: one kernel per array
+// and light, no early out.
+float shadowPcfSun(vec2 uv, float layer, float depth, float texel, float radius) {
+    float sum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            sum += texture(s_shadowSun, vec4(uv + shadowTapOffset(i, j, radius) * texel, layer, depth));
+    return sum * (1.0 / 16.0);
+}
+float shadowPcfLocal(vec2 uv, float layer, float depth, float texel, float radius) {
+    float sum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            sum += texture(s_shadowLocal, vec4(uv + shadowTapOffset(i, j, radius) * texel, layer, depth));
+    return sum * (1.0 / 16.0);
+}
+
+// The receiver point moved by the biases for a view whose texel measures `texel` metres here.
+vec3 shadowReceiver(vec3 position, vec3 normal, vec3 towardLight, float texel) {
+    float cosTheta = clamp(dot(normal, towardLight), 0.0, 1.0);
+    float sinTheta = sqrt(1.0 - cosTheta * cosTheta);
+    return position + normal * (texel * u_shadowFilter.y * sinTheta) + towardLight * (texel * u_shadowFilter.z);
+}
+
+// Visibility in [0, 1] of light `index` (its vector: position of a point light) at `position` with unit
+// `normal`; 1 for lights without a shadow map.
+float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, vec3 towardLight) {
+    if (u_shadowFilter.w < 0.5 || index >= MAX_SHADOW_LIGHTS) return 1.0;
+    ivec4 record = u_shadowLights[index];
+    float radius = u_shadowFilter.x;
+    // First the view and the receiver's map coordinates (arithmetic only), then one filtered lookup.
+    int view = -1;
+    vec3 coord = vec3(0.0);   // uv, depth
+    if (record.x == SHADOW_CASCADES) {
+        // The first cascade whose square holds the point with the filter's reach to spare (the cascades are
+        // ordered near to far and cached squares may be larger than needed).
+        float guard = (radius + 2.0) * u_shadowMapSizes.x;
+        for (int k = record.z - 1; k >= 0; --k) {
+            int v = record.y + k;
+            vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[v].x);
+            vec3 clip = (u_shadowViews[v] * vec4(p, 1.0)).xyz;
+            vec2 uv = clip.xy * 0.5 + 0.5;
+            if (all(greaterThanEqual(uv, vec2(guard))) && all(lessThanEqual(uv, vec2(1.0 - guard)))) {
+                view = v;
+                coord = vec3(uv, clip.z);
+            }
+        }
+        if (view < 0) return 1.0;   // beyond shadow.distance
+        return shadowPcfSun(coord.xy, u_shadowViewInfo[view].y, coord.z, u_shadowMapSizes.x, radius);
+    }
+    if (record.x == SHADOW_CUBE) {
+        // The face of the major axis (faces are a little wider than 90 degrees: the filter stays on the face).
+        vec3 d = position - lightVector;
+        vec3 a = abs(d);
+        int face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : (a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5));
+        view = record.y + face;
+        float depth = max(a.x, max(a.y, a.z));
+        vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[view].x * depth);
+        vec4 clip = u_shadowViews[view] * vec4(p, 1.0);
+        vec3 ndc = clip.xyz / clip.w;
+        return shadowPcfLocal(ndc.xy * 0.5 + 0.5, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
+    }
+    return 1.0;
+}

@@ -1,0 +1,28 @@
+// Shadow maps: depth only; alpha-masked materials (glTF MASK) drop the texels the G-buffer drops, so foliage and
+// grilles cast the shadow of what is drawn.
+#include "common/bindings.glsl"
+#include "common/frame.glsl"
+
+in vec2 v_uv;
+
+layout(location = 2) uniform int u_materialIndex;
+layout(location = 3) uniform int u_textureMask;     // bit 0: base colour texture bound
+layout(location = 4) uniform mat3 u_uvTransform;
+
+layout(binding = UNIT_MATERIAL_BASE_COLOR) uniform sampler2D t_baseColor;
+
+void main() {
+    float cutoff = u_materials[u_materialIndex].densityCutoff.y;
+    if (cutoff >= 0.0) {
+        float alpha = u_materials[u_materialIndex].baseColor.a;
+        if ((u_textureMask & 1) != 0) {
+            // An explicit isotropic level (the larger axis): llvmpipe's anisotropic filter has no sample cap, and
+            // a hostile footprint would stall the pass (gbuffer.frag explains); a mask needs no sharper level.
+            vec2 uv = (u_uvTransform * vec3(v_uv, 1.0)).xy;
+            vec2 texels = uv * vec2(textureSize(t_baseColor, 0));
+            float lod = 0.5 * log2(max(max(dot(dFdx(texels), dFdx(texels)), dot(dFdy(texels), dFdy(texels))), 1.0));
+            alpha *= textureLod(t_baseColor, uv, min(lod, 20.0)).a;
+        }
+        if (alpha < cutoff) discard;
+    }
+}
