@@ -15,6 +15,7 @@
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "glints/method_checks.h"
 #include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
@@ -281,6 +282,18 @@ static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const R
     }
     g.meanGap = std::abs(sa / sb - 1.0);
     return g;
+}
+
+// check-method's finite rule (40,824 footprints x angles x roughnesses, engine/glints/method_checks.cpp) once
+// found 780 NaN and then one Inf: duv/dx about 1e4 UV with nearly parallel derivatives made det(Sigma_s) round
+// to zero or below, and the quadratic form of its nearly singular inverse negative. Every value must be finite.
+TEST(Kemppinen2025, FiniteAtDegenerateHugeFootprints) {
+    checks::CheckOptions options;
+    options.rules = {"finite"};
+    checks::CheckReport report = checks::checkMethod("kemppinen2025", options);
+    std::string table = checks::formatTable(report);
+    ASSERT_EQ(report.results.size(), 1u);
+    EXPECT_TRUE(report.passed()) << table;
 }
 
 TEST(Kemppinen2025, HighDensityConvergesToSmooth) {

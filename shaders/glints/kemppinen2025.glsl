@@ -58,15 +58,20 @@ KemppinenProcess kemppinenProcess(vec2 uv, vec2 dx, vec2 dy, vec2 stretch, float
     float f2 = P_FILTER_SIZE * P_FILTER_SIZE;
     // Sigma_s = f^2 J J^T (Algorithm 1 line 11), with a floor of 1e-4 level-0 cells so it stays invertible.
     float floorVar = 1e-8 / (resolution * resolution);
-    float a = f2 * (jx.x * jx.x + jy.x * jy.x) + floorVar;
+    float a0 = f2 * (jx.x * jx.x + jy.x * jy.x), c0 = f2 * (jx.y * jx.y + jy.y * jy.y);
+    float a = a0 + floorVar;
     float b = f2 * (jx.x * jx.y + jy.x * jy.y);
-    float c = f2 * (jx.y * jx.y + jy.y * jy.y) + floorVar;
-    float det = max(a * c - b * b, 1e-30);
+    float c = c0 + floorVar;
+    // det = a c - b^2 without its cancellation: a0 c0 - b^2 = f^4 (jx x jy)^2 exactly, so a nearly degenerate
+    // footprint (parallel derivatives, thousands of UV units long at grazing angles) keeps a positive determinant
+    // instead of rounding to zero or below (which made the inverse infinite and D NaN).
+    float cross2 = jx.x * jy.y - jx.y * jy.x;
+    float det = max(f2 * f2 * cross2 * cross2 + floorVar * (a0 + c0) + floorVar * floorVar, 1e-30);
     p.invCov = vec3(c, -b, a) / det;
     p.spatialNorm = 1.0 / (2.0 * PI * sqrt(det));
     float mean = 0.5 * (a + c), diff = 0.5 * (a - c);
     float root = sqrt(diff * diff + b * b);
-    float major = sqrt(mean + root), minor = sqrt(max(mean - root, 1e-30));
+    float major = sqrt(mean + root), minor = sqrt(det) / major;   // minor^2 major^2 = det: no cancellation either
     anisotropy = major / minor;
     // Sec. 3.3.2 / Algorithm 1 line 5 (QueryLod): the level from the footprint size in grid units. authors (their
     // shader): log2(f max|J_i| sqrt(N)) + 2^f, about one level below `cells` at f = 0.7 (finer spatial cells,
@@ -165,7 +170,8 @@ vec3 kemppinenCellTerms(KemppinenLevel lv, ivec2 cellA, float colorVariation) {
         bool inDisk = dot(fromCentre, fromCentre) < 0.25;     // points outside U are rejected
         vec2 ds = lv.local - vec2(offset) - p.spatial;
         vec2 da = da0 - p.angular;
-        float e = ds.x * ds.x * lv.invCovS.x + 2.0 * ds.x * ds.y * lv.invCovS.y + ds.y * ds.y * lv.invCovS.z +
+        // The quadratic form is >= 0; with a nearly singular Sigma_s its float rounding is not (exp would overflow).
+        float e = max(ds.x * ds.x * lv.invCovS.x + 2.0 * ds.x * ds.y * lv.invCovS.y + ds.y * ds.y * lv.invCovS.z, 0.0) +
                   dot(da, da) * lv.invVarA;
         float weight = (valid && inDisk) ? kemppinenRoulette(p.roulette, lv.weight) * exp(-0.5 * e) : 0.0;
         // line 19 (colour only when asked: three cosines per point otherwise wasted)

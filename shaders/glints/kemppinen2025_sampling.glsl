@@ -82,7 +82,7 @@ KemppinenTerm kemppinenBlockTerm(GlintPixel px, int ndf, KemppinenProcess proc, 
     vec3 invCovS = proc.invCovCell[li];
     // Below e^-50 the term is absent (the CPU twin cuts at the same exponent: float underflows where double does
     // not, and the reservoir draws one random number per present term).
-    float exponent = ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z;
+    float exponent = max(ds.x * ds.x * invCovS.x + 2.0 * ds.x * ds.y * invCovS.y + ds.y * ds.y * invCovS.z, 0.0);
     float spatial = exponent < 100.0 ? exp(-0.5 * exponent) : 0.0;
     vec3 c = kemppinenGlintColor(p.hue, px.colorVariation);
     t.weight = kemppinenRoulette(p.roulette, levelWeight) * spatial * dot(c, vec3(0.2126, 0.7152, 0.0722));
