@@ -54,10 +54,7 @@ public:
         width_ = width;
         height_ = height;
         texture_ = gl::createTexture2D(GL_RGBA8, width, height);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        framebuffer_ = gl::Framebuffer(fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture_.id(), 0);
+        framebuffer_ = gl::createFramebuffer("walkthrough present", {texture_.id()});
     }
     GLuint framebuffer() const { return framebuffer_.id(); }
     int width() const { return width_; }

@@ -4,6 +4,8 @@
 
 #include <utility>
 
+#include <initializer_list>
+
 namespace glimmer::gl {
 
 template <void (*Destroy)(GLuint)>
@@ -50,5 +52,10 @@ using Sampler = Handle<detail::deleteSampler>;
 Buffer createBuffer(GLsizeiptr bytes, const void* data, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 // 2D texture with immutable storage; levels = 1 for render targets.
 Texture createTexture2D(GLenum internalFormat, int width, int height, int levels = 1);
+// 1 x 1 RGBA16F texture holding one value (a neutral input where a pass has none, e.g. "unoccluded").
+Texture createConstantTexture(float r, float g, float b, float a);
+// Framebuffer with `colors` on attachments 0.. (all drawn to, in order) and an optional depth attachment, labelled
+// for debuggers; throws an Error naming `label` when incomplete.
+Framebuffer createFramebuffer(const char* label, std::initializer_list<GLuint> colors, GLuint depth = 0);
 
 }  // namespace glimmer::gl

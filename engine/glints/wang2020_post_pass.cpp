@@ -40,17 +40,8 @@ struct PostTargets {
         height = h;
         occlusionSums = gl::createTexture2D(GL_RG32F, w, h);
         occludedGlint = gl::createTexture2D(GL_RGBA32F, w, h);
-        occlusionSumsFbo = framebufferOf(occlusionSums.id(), "occlusion sums");
-        occludedGlintFbo = framebufferOf(occludedGlint.id(), "occluded glints");
-    }
-    static gl::Framebuffer framebufferOf(GLuint texture, const char* label) {
-        GLuint id = 0;
-        glCreateFramebuffers(1, &id);
-        glObjectLabel(GL_FRAMEBUFFER, id, -1, label);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, texture, 0);
-        if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error(std::string("framebuffer ") + label + " incomplete");
-        return gl::Framebuffer(id);
+        occlusionSumsFbo = gl::createFramebuffer("occlusion sums", {occlusionSums.id()});
+        occludedGlintFbo = gl::createFramebuffer("occluded glints", {occludedGlint.id()});
     }
 };
 

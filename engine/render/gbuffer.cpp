@@ -10,7 +10,9 @@ static void checkComplete(GLuint fbo, const char* name) {
         throw Error(std::string("framebuffer ") + name + " incomplete (status 0x" + std::to_string(status) + ")");
 }
 
-static gl::Framebuffer createFramebuffer(const char* label) {
+// The glint part sits on attachment 3 with gaps before it (and joins the glint framebuffer later), so these
+// two are built attachment by attachment rather than by gl::createFramebuffer.
+static gl::Framebuffer labelledFramebuffer(const char* label) {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);
     glObjectLabel(GL_FRAMEBUFFER, id, -1, label);
@@ -28,27 +30,16 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
     glintEnvironment_ = {};  // reallocated below at the new size when needed
     glintPart_ = {};
     static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
-    gbufferFbo_ = createFramebuffer("gbuffer");
-    GLenum drawBuffers[kGBufferColorCount];
-    for (int i = 0; i < kGBufferColorCount; ++i) {
-        gbuffer_[i] = gl::createTexture2D(formats[i], width, height);
-        glNamedFramebufferTexture(gbufferFbo_.id(), GL_COLOR_ATTACHMENT0 + i, gbuffer_[i].id(), 0);
-        drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
-    }
-    glNamedFramebufferDrawBuffers(gbufferFbo_.id(), kGBufferColorCount, drawBuffers);
+    for (int i = 0; i < kGBufferColorCount; ++i) gbuffer_[i] = gl::createTexture2D(formats[i], width, height);
+    static_assert(kGBufferColorCount == 5, "attachments below");
     depth_ = gl::createTexture2D(GL_DEPTH_COMPONENT32F, width, height);
-    glNamedFramebufferTexture(gbufferFbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    checkComplete(gbufferFbo_.id(), "gbuffer");
-
-    hdrFbo_ = createFramebuffer("hdr");
+    gbufferFbo_ = gl::createFramebuffer(
+        "gbuffer", {gbuffer_[0].id(), gbuffer_[1].id(), gbuffer_[2].id(), gbuffer_[3].id(), gbuffer_[4].id()},
+        depth_.id());
     hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
-    glNamedFramebufferTexture(hdrFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
-    checkComplete(hdrFbo_.id(), "hdr");
-
-    displayFbo_ = createFramebuffer("display");
+    hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()});
     display_ = gl::createTexture2D(GL_RGBA8, width, height);
-    glNamedFramebufferTexture(displayFbo_.id(), GL_COLOR_ATTACHMENT0, display_.id(), 0);
-    checkComplete(displayFbo_.id(), "display");
+    displayFbo_ = gl::createFramebuffer("display", {display_.id()});
     if (glintPost) allocateGlintPost();
     if (glintPart) allocateGlintPart();
 }
@@ -57,20 +48,15 @@ void FrameTargets::allocateGlintPost() {
     // RGBA32F: a micro-scale glint can exceed half-float range (one particle's radiance over a whole footprint).
     glintEnvironment_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
     glintLights_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
-    lightingGlintFbo_ = createFramebuffer("lighting+glints");
-    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
-    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT1, glintEnvironment_.id(), 0);
-    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT2, glintLights_.id(), 0);
-    const GLenum drawBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(lightingGlintFbo_.id(), 3, drawBuffers);
-    checkComplete(lightingGlintFbo_.id(), "lighting+glints");
+    lightingGlintFbo_ =
+        gl::createFramebuffer("lighting+glints", {hdr_.id(), glintEnvironment_.id(), glintLights_.id()});
     attachGlintPart();
 }
 
 void FrameTargets::allocateGlintPart() {
     // RGBA32F for the same reason as the glint targets above.
     glintPart_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
-    lightingGlintPartFbo_ = createFramebuffer("lighting+glint part");
+    lightingGlintPartFbo_ = labelledFramebuffer("lighting+glint part");
     glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
     glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT3, glintPart_.id(), 0);
     const GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};

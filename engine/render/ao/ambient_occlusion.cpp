@@ -24,21 +24,7 @@ AoSettings AoSettings::from(const RenderSettings& s) {
     return ao;
 }
 
-static gl::Framebuffer framebufferFor(GLuint texture, const char* label) {
-    GLuint id = 0;
-    glCreateFramebuffers(1, &id);
-    glObjectLabel(GL_FRAMEBUFFER, id, -1, label);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, texture, 0);
-    if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(std::string("framebuffer ") + label + " incomplete");
-    return gl::Framebuffer(id);
-}
-
-AmbientOcclusion::AmbientOcclusion() {
-    white_ = gl::createTexture2D(GL_RGBA16F, 1, 1);
-    const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    glClearTexImage(white_.id(), 0, GL_RGBA, GL_FLOAT, one);
-}
+AmbientOcclusion::AmbientOcclusion() : white_(gl::createConstantTexture(1.0f, 1.0f, 1.0f, 1.0f)) {}
 
 std::vector<PassTiming> AmbientOcclusion::prepare(const RenderSettings& settings, const Scene& scene,
                                                   uint64_t sceneSerial, int width, int height) {
@@ -50,8 +36,8 @@ std::vector<PassTiming> AmbientOcclusion::prepare(const RenderSettings& settings
         height_ = height;
         raw_ = gl::createTexture2D(GL_R16F, width, height);
         resolved_ = gl::createTexture2D(GL_RGBA16F, width, height);
-        rawFbo_ = framebufferFor(raw_.id(), "ao raw");
-        resolvedFbo_ = framebufferFor(resolved_.id(), "ao resolved");
+        rawFbo_ = gl::createFramebuffer("ao raw", {raw_.id()});
+        resolvedFbo_ = gl::createFramebuffer("ao resolved", {resolved_.id()});
     }
     const std::string params = settings_.bake.text();
     if (settings_.sky && (sceneSerial != bakedSerial_ || params != bakedParams_)) {

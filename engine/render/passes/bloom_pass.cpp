@@ -44,11 +44,7 @@ void BloomPass::resize(int width, int height) {
         glTextureParameteri(level.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(level.texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(level.texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        glObjectLabel(GL_FRAMEBUFFER, fbo, -1, "bloom level");
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, level.texture.id(), 0);
-        level.framebuffer = gl::Framebuffer(fbo);
+        level.framebuffer = gl::createFramebuffer("bloom level", {level.texture.id()});
         levels_.push_back(std::move(level));
     }
 }

@@ -8,14 +8,7 @@ namespace glimmer {
 GLuint ForwardTarget::framebuffer(const FrameTargets& targets) {
     if (!fbo_ || hdr_ != targets.hdrTexture() || depth_ != targets.depthTexture() || width_ != targets.width() ||
         height_ != targets.height()) {
-        GLuint id = 0;
-        glCreateFramebuffers(1, &id);
-        glObjectLabel(GL_FRAMEBUFFER, id, -1, "forward");
-        fbo_ = gl::Framebuffer(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, targets.hdrTexture(), 0);
-        glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, targets.depthTexture(), 0);
-        if (glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("framebuffer forward incomplete");
+        fbo_ = gl::createFramebuffer("forward", {targets.hdrTexture()}, targets.depthTexture());
         hdr_ = targets.hdrTexture();
         depth_ = targets.depthTexture();
         width_ = targets.width();

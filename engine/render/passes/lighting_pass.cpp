@@ -49,11 +49,7 @@ void LightingPass::execute(const FrameContext& frame) {
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
-    if (!frame.ambientOcclusion && !unoccluded_) {
-        unoccluded_ = gl::createTexture2D(GL_RGBA16F, 1, 1);
-        const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-        glClearTexImage(unoccluded_.id(), 0, GL_RGBA, GL_FLOAT, one);
-    }
+    if (!frame.ambientOcclusion && !unoccluded_) unoccluded_ = gl::createConstantTexture(1.0f, 1.0f, 1.0f, 1.0f);
     glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.ambientOcclusion ? frame.ambientOcclusion : unoccluded_.id());
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
