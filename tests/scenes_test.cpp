@@ -336,6 +336,38 @@ TEST(ScenesGltf, TextureTransformChangesTheSampledTexels) {
     }
 }
 
+// texture_anisotropy reaches the material textures: at the default (16) the albedo equals a render that sets 16,
+// and at 1 (trilinear: the mip level of the footprint's major axis) the grazing floor is blurrier, so the summed
+// difference between neighbouring albedo pixels there is smaller. Probes, AO and shadows off: albedo only.
+TEST(ScenesAtrium, TextureAnisotropyCapBlursTheGrazingFloor) {
+    auto albedo = [](const char* anisotropy) {
+        glimmer::RenderRequest r = request("atrium", "grazing", "albedo");
+        r.width = 256;
+        r.height = 144;
+        r.environment = "none";
+        for (const char* s : {"probes.enabled=0", "ao.enabled=0", "shadow.enabled=0"}) r.settings.apply(s);
+        if (anisotropy) r.settings.apply(std::string("texture_anisotropy=") + anisotropy);
+        return glimmer::renderOffscreen(r);
+    };
+    glimmer::RenderResult byDefault = albedo(nullptr), sixteen = albedo("16"), trilinear = albedo("1");
+    EXPECT_EQ(byDefault.hdr, sixteen.hdr);
+    auto contrast = [](const glimmer::RenderResult& result) {
+        double sum = 0.0;
+        // Rows 40-55 % down: the floor some metres away, where the footprint is most anisotropic.
+        for (int y = result.height * 40 / 100; y < result.height * 55 / 100; ++y)
+            for (int x = 0; x + 1 < result.width; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = (size_t(y) * result.width + x) * 4 + c;
+                    sum += std::abs(result.hdr[i + 4] - result.hdr[i]) +
+                           std::abs(result.hdr[i + size_t(result.width) * 4] - result.hdr[i]);
+                }
+        return sum;
+    };
+    const double sharp = contrast(sixteen), blurred = contrast(trilinear);
+    std::printf("[ anisotropy ] floor neighbour contrast: 16x %.1f, trilinear %.1f\n", sharp, blurred);
+    EXPECT_LT(blurred, 0.95 * sharp);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Tangent generation
 

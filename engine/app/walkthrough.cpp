@@ -113,7 +113,16 @@ public:
         gpuScene_ = std::make_unique<GpuScene>(scene_);
         std::filesystem::path shaderRoot =
             options.request.shaderRoot.empty() ? defaultShaderDir() : options.request.shaderRoot;
-        renderer_ = std::make_unique<Renderer>(shaderRoot, options.request.settings);
+        std::string rendererName = window_.rendererString();
+        softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
+                            rendererName.find("softpipe") != std::string::npos;
+        RenderSettings settings = options.request.settings;
+        // On a software renderer the interactive window reads material textures trilinearly unless told otherwise:
+        // llvmpipe's anisotropic filtering was about half the frame at render scale 0.25 (docs/performance.md).
+        // Screenshot runs keep the offscreen default so that they equal `glimmer render`.
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet("texture_anisotropy"))
+            settings.apply("texture_anisotropy=1");
+        renderer_ = std::make_unique<Renderer>(shaderRoot, settings);
         renderer_->setAsyncGpuTimers(true);
         uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);
         // Headless runs (--frames) build once and fail on any error; the interactive window watches shaders/.
@@ -142,9 +151,6 @@ public:
         controls_.vsync = options.vsync && options.frameLimit == 0;
         window_.setVsync(controls_.vsync);
         uiHidden_ = options.hideUi;
-        std::string rendererName = window_.rendererString();
-        softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
-                            rendererName.find("softpipe") != std::string::npos;
         log::info("view: ", rendererName, ", ", window_.versionString());
         resolution_ = std::make_unique<WindowResolution>(shaderRoot, softwareRenderer_, options.screenshot.has_value(),
                                                          options.renderScale, options.targetFps);

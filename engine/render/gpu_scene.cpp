@@ -33,6 +33,8 @@ GLint glWrap(TextureWrap wrap) {
 
 bool isEmissive(const Material& m) { return m.emissive.x > 0.0f || m.emissive.y > 0.0f || m.emissive.z > 0.0f; }
 
+bool filtersAnisotropically(const TextureData& data) { return data.sampler.mipmaps && !data.sampler.nearestMag; }
+
 gl::Texture uploadTexture(const TextureData& data) {
     int levels = 1 + int(std::floor(std::log2(float(std::max(data.width, data.height)))));
     gl::Texture texture = gl::createTexture2D(data.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, data.width, data.height, levels);
@@ -46,7 +48,7 @@ gl::Texture uploadTexture(const TextureData& data) {
     // Anisotropic filtering for mipmapped linear textures only: it has no meaning without mip levels, and llvmpipe
     // (Mesa 22.3.6, LLVM 15) crashed inside LLVM compiling the G-buffer shader for a NEAREST texture with 16x
     // anisotropy (tests/data/texture_transform.gltf, ScenesGltf.TextureTransformChangesTheSampledTexels).
-    if (GLAD_GL_EXT_texture_filter_anisotropic && data.sampler.mipmaps && !data.sampler.nearestMag)
+    if (GLAD_GL_EXT_texture_filter_anisotropic && filtersAnisotropically(data))
         glTextureParameterf(texture.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
     return texture;
 }
@@ -87,7 +89,10 @@ GpuScene::GpuScene(const Scene& scene) {
         buffers.vao = gl::VertexArray(vao);
         meshes_.push_back(std::move(buffers));
     }
-    for (const TextureData& texture : scene.textures) textures_.push_back(uploadTexture(texture));
+    for (const TextureData& texture : scene.textures) {
+        textures_.push_back(uploadTexture(texture));
+        anisotropic_.push_back(filtersAnisotropically(texture));
+    }
     for (const Instance& instance : scene.instances) {
         const Material& m = scene.materials[instance.material];
         hasBlended_ = hasBlended_ || m.blend;
@@ -111,6 +116,13 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     lights_ = gl::createBuffer(GLsizeiptr(lights.size() * sizeof(GpuLight)), lights.data(), 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
+}
+
+void GpuScene::setTextureAnisotropy(float maxAnisotropy) const {
+    if (maxAnisotropy == textureAnisotropy_ || !GLAD_GL_EXT_texture_filter_anisotropic) return;
+    textureAnisotropy_ = maxAnisotropy;
+    for (size_t i = 0; i < textures_.size(); ++i)
+        if (anisotropic_[i]) glTextureParameterf(textures_[i].id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, maxAnisotropy);
 }
 
 void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix) const {

@@ -37,6 +37,9 @@ public:
     bool hasBlended() const { return hasBlended_; }
     bool hasOpaqueEmissive() const { return hasOpaqueEmissive_; }
     int lightCount() const { return lightCount_; }
+    // GL_TEXTURE_MAX_ANISOTROPY of the mipmapped linear material textures (texture_anisotropy); a no-op when
+    // unchanged, so the renderer calls it every frame.
+    void setTextureAnisotropy(float maxAnisotropy) const;
     // Mesh-space chunks of a mesh (bounds for culling and for the shadow maps' scene bounds).
     const std::vector<MeshChunk>& meshChunks(uint32_t mesh) const { return meshes_[mesh].chunks; }
     size_t meshCount() const { return meshes_.size(); }
@@ -63,6 +66,8 @@ private:
     };
     std::vector<MeshBuffers> meshes_;
     std::vector<gl::Texture> textures_;
+    std::vector<bool> anisotropic_;            // per texture: mipmapped and linear (anisotropy applies)
+    mutable float textureAnisotropy_ = 16.0f;  // GL texture state, set through a const scene
     gl::Buffer materials_, lights_;
     int lightCount_ = 0;
     bool hasBlended_ = false, hasOpaqueEmissive_ = false;

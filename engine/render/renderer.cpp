@@ -293,6 +293,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     if (!blendSample) shadowMaps_->prepare(scene, gpuScene, camera, float(width) / float(height), settings_);
     runPass(*sunShadowPass_, frame);
     runPass(*pointShadowPass_, frame);
+    gpuScene.setTextureAnisotropy(settings_.common_("texture_anisotropy"));
     runPass(*gbufferPass_, frame);
     runPass(*gtaoPass_, frame);
     runPass(*aoResolvePass_, frame);

@@ -13,6 +13,9 @@ namespace glimmer {
 const std::vector<CommonParam>& commonParams() {
     static const std::vector<CommonParam> params = {
         {{"exposure", 0.0f, -16.0f, 16.0f, "exposure in stops before tone mapping; exposure=auto meters the frame (then these stops compensate)"}},
+        {{"texture_anisotropy", 16.0f, 1.0f, 16.0f,
+          "most anisotropic filtering of mipmapped material textures (1: trilinear; the window on a software "
+          "renderer starts at 1)"}},
         {{"ambient", 1.0f, 0.0f, 16.0f, "scale of the constant sky/ambient radiance (when no environment map)"}},
         {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
         {{"light.count", 0.0f, 0.0f, 64.0f,

@@ -49,12 +49,12 @@ std::string commonGroupTitle(const std::string& prefix) {
 // Parameters of the sky-visibility bake: each change re-bakes the scene for seconds, so they are set with
 // --set (or a scene file), not dragged; the panel then has room for the interactive ones at 1280x720.
 // The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce), and the shadow
-// maps' sizes and cache switch.
+// maps' sizes and cache switch; the texture filtering cap (a per-machine choice).
 bool panelHidesParameter(const std::string& name) {
     static const char* const names[] = {"ao.sky_cell", "ao.sky_rays", "ao.slices",      "ao.steps",
                                         "ao.falloff",  "ao.denoise",  "ao.multibounce", "ssaa.factor",
                                         "taa.glint_history", "taa.stable_glints", "shadow.map_size",
-                                        "shadow.point_map_size", "shadow.cache"};
+                                        "shadow.point_map_size", "shadow.cache", "texture_anisotropy"};
     for (const char* n : names)
         if (name == n) return true;
     return false;
