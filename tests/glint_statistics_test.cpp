@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -190,12 +191,22 @@ struct FootprintRow {
     SparkleStats small, filtered;
 };
 
+// The smooth D of `scene` at `size`, rendered once per test process: every method's row divides by the same
+// image (the render is deterministic, so a second render would give the same floats).
+const std::vector<float>& smoothGlintD(const std::string& scene, int size) {
+    static std::map<std::pair<std::string, int>, std::vector<float>> rendered;
+    auto [it, inserted] = rendered.try_emplace({scene, size});
+    if (inserted) it->second = renderGlintD(scene, "smooth", size);
+    return it->second;
+}
+
 // D / D_smooth over the highlight at N pixels, and of the 4N render box-filtered 4x4 down to N (D and D_smooth
 // filtered separately: a pixel of the small render sees the facets of its 4x4 block).
 FootprintRow footprintRow(const std::string& scene, const std::string& method, int n) {
     FootprintRow row;
-    row.small = sparkleStats(renderGlintD(scene, method, n), renderGlintD(scene, "smooth", n));
-    std::vector<float> big = renderGlintD(scene, method, 4 * n), bigSmooth = renderGlintD(scene, "smooth", 4 * n);
+    row.small = sparkleStats(renderGlintD(scene, method, n), smoothGlintD(scene, n));
+    std::vector<float> big = renderGlintD(scene, method, 4 * n);
+    const std::vector<float>& bigSmooth = smoothGlintD(scene, 4 * n);
     row.filtered = sparkleStats(boxDownsample(big, 4 * n, 4 * n, 4), boxDownsample(bigSmooth, 4 * n, 4 * n, 4));
     std::printf("| %s | %s | %.3f / %.3f | %.4f / %.4f | %.2f | %.3f / %.3f |\n", method.c_str(), scene.c_str(),
                 row.small.meanRatio, row.filtered.meanRatio, row.small.variance, row.filtered.variance,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -264,9 +265,9 @@ struct GapStats {
     double meanGap = 0.0, worstBlockGap = 0.0;
 };
 
-static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const RenderSettings& smooth, int size) {
+// `b`: the smooth render of the same scene, NDF and size (rig.render(smoothSettings(ndf), "final", size)).
+static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const std::vector<float>& b, int size) {
     auto a = rig.render(glinty, "final", size);
-    auto b = rig.render(smooth, "final", size);
     GapStats g;
     double sa = 0, sb = 0;
     for (int c = 0; c < 3; ++c) {
@@ -296,15 +297,22 @@ TEST(Kemppinen2025, FiniteAtDegenerateHugeFootprints) {
     EXPECT_TRUE(report.passed()) << table;
 }
 
+// Asserted at micro_roughness 0.01; the rows at 0.03 and 0.1 are a measurement of how the gap grows (nothing is
+// asserted on them) and are rendered with GLIMMER_MEASURE=1 only. The smooth render of each NDF is shared by
+// its rows (deterministic: a second render gives the same floats).
 TEST(Kemppinen2025, HighDensityConvergesToSmooth) {
     const int size = 128;
+    const char* measure = std::getenv("GLIMMER_MEASURE");
+    std::vector<float> micros = {0.01f};
+    if (measure && std::string(measure) == "1") micros = {0.01f, 0.03f, 0.1f};
     std::printf("scene    ndf       micro_roughness  mean gap  worst 4x4-block gap\n");
     for (const char* sceneName : {"plane90", "plane25"}) {
         GlintRig rig(sceneName);
-        for (int ndf : {0, 1})
-            for (float micro : {0.01f, 0.03f, 0.1f}) {
+        for (int ndf : {0, 1}) {
+            std::vector<float> smooth = rig.render(smoothSettings(ndf), "final", size);
+            for (float micro : micros) {
                 GapStats g = gapToSmooth(rig, kemppinen({{"density", 1e13f}, {"micro_roughness", micro}}, ndf),
-                                         smoothSettings(ndf), size);
+                                         smooth, size);
                 std::printf("%-8s %-9s %-16.3f %-9.4f %.4f\n", sceneName, ndf ? "beckmann" : "ggx", micro, g.meanGap,
                             g.worstBlockGap);
                 if (micro == 0.01f) {
@@ -317,6 +325,7 @@ TEST(Kemppinen2025, HighDensityConvergesToSmooth) {
                         EXPECT_LT(g.worstBlockGap, 0.03) << sceneName << " ndf " << ndf;
                 }
             }
+        }
     }
 }
 
@@ -543,7 +552,8 @@ TEST(Kemppinen2025, TriplanarModeIgnoresUvs) {
     EXPECT_EQ(triplanarDiff, 0.0);
     EXPECT_GT(uvDiff, 0.5);
     // Dense triplanar glints converge to the smooth render as well.
-    GapStats g = gapToSmooth(rig, kemppinen({{"triplanar", 1.0f}, {"density", 1e13f}}), smoothSettings(0), size);
+    GapStats g = gapToSmooth(rig, kemppinen({{"triplanar", 1.0f}, {"density", 1e13f}}),
+                             rig.render(smoothSettings(0), "final", size), size);
     EXPECT_LT(g.meanGap, 0.03);
     EXPECT_LT(g.worstBlockGap, 0.03);
 }

@@ -7,8 +7,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 
@@ -239,9 +241,15 @@ double bestBias(OffscreenSession& session, RenderRequest r, const RenderResult& 
     return best;
 }
 
+// Asserted: the Gaussian 6x6 comparison at the paper's count and the convergence of both estimators at bias 0.
+// The table's other columns (the best MIP bias of every row, 7 renders each, and the gauss6 pyramid at the two
+// larger budgets) are measurements that nothing asserts: rendered with GLIMMER_MEASURE=1 only (nan otherwise).
 TEST(RegularSamplingGpu, ErrorAgainstTheReferenceUnderSmallBrightSpots) {
     const fs::path env = writeSpotEnvironment();
     const int size = 128;
+    const char* measureVar = std::getenv("GLIMMER_MEASURE");
+    const bool measure = measureVar && std::string(measureVar) == "1";
+    const double unmeasured = std::nan("");
     struct Material { const char* name; double mx, my; int paperSamples; };
     const Material materials[] = {{"isotropic", 0.1, 0.1, 14}, {"anisotropic", 0.2, 0.075, 17}};
     FILE* table = std::fopen((outputDir() / "rmse_table.md").string().c_str(), "w");
@@ -269,6 +277,9 @@ TEST(RegularSamplingGpu, ErrorAgainstTheReferenceUnderSmallBrightSpots) {
         double regularErrors[3], fisErrors[3], regularBest[3], fisBest[3], regularBias[3], fisBias[3];
         double regularGauss6[3], fisGauss6[3], regularGauss6Best[3], fisGauss6Best[3], regularGauss6Bias[3],
             fisGauss6Bias[3];
+        for (double* column : {regularBest, fisBest, regularBias, fisBias, regularGauss6, fisGauss6, regularGauss6Best,
+                               fisGauss6Best, regularGauss6Bias, fisGauss6Bias})
+            std::fill(column, column + 3, unmeasured);
         int counts[3];
         {
             RenderRequest reg = sphereRequest("regular", size, env.string());
@@ -282,15 +293,17 @@ TEST(RegularSamplingGpu, ErrorAgainstTheReferenceUnderSmallBrightSpots) {
                 reg.settings.apply("ibl.mip_bias=0");
                 RenderResult regular = session.render(reg);
                 regularErrors[b] = rmse(regular, reference);
-                regularBest[b] = bestBias(session, reg, reference, regularBias[b]);
-                reg.settings.apply("ibl.pyramid=gauss6");   // the paper's Sec. 8 pyramid
-                reg.settings.apply("ibl.mip_bias=0");
-                RenderResult regularGauss = session.render(reg);
-                regularGauss6[b] = rmse(regularGauss, reference);
-                regularGauss6Best[b] = bestBias(session, reg, reference, regularGauss6Bias[b]);
-                reg.settings.apply("ibl.pyramid=source");
-                writeExr(outputDir() / ("regular_gauss6_" + std::string(m.name) + "_" + std::to_string(budget) + ".exr"),
-                         regularGauss.hdr.data(), regularGauss.width, regularGauss.height);
+                if (measure) regularBest[b] = bestBias(session, reg, reference, regularBias[b]);
+                if (b == 0 || measure) {
+                    reg.settings.apply("ibl.pyramid=gauss6");   // the paper's Sec. 8 pyramid
+                    reg.settings.apply("ibl.mip_bias=0");
+                    RenderResult regularGauss = session.render(reg);
+                    regularGauss6[b] = rmse(regularGauss, reference);
+                    if (measure) regularGauss6Best[b] = bestBias(session, reg, reference, regularGauss6Bias[b]);
+                    reg.settings.apply("ibl.pyramid=source");
+                    writeExr(outputDir() / ("regular_gauss6_" + std::string(m.name) + "_" + std::to_string(budget) + ".exr"),
+                             regularGauss.hdr.data(), regularGauss.width, regularGauss.height);
+                }
                 writeExr(outputDir() / ("regular_" + std::string(m.name) + "_" + std::to_string(budget) + ".exr"),
                          regular.hdr.data(), regular.width, regular.height);
             }
@@ -304,15 +317,17 @@ TEST(RegularSamplingGpu, ErrorAgainstTheReferenceUnderSmallBrightSpots) {
                 fis.settings.apply("ibl.mip_bias=0");
                 RenderResult importance = session.render(fis);
                 fisErrors[b] = rmse(importance, reference);
-                fisBest[b] = bestBias(session, fis, reference, fisBias[b]);
-                fis.settings.apply("ibl.pyramid=gauss6");
-                fis.settings.apply("ibl.mip_bias=0");
-                RenderResult fisGauss = session.render(fis);
-                fisGauss6[b] = rmse(fisGauss, reference);
-                fisGauss6Best[b] = bestBias(session, fis, reference, fisGauss6Bias[b]);
-                fis.settings.apply("ibl.pyramid=source");
-                writeExr(outputDir() / ("fis_gauss6_" + std::string(m.name) + "_" + std::to_string(budgets[b].first) + ".exr"),
-                         fisGauss.hdr.data(), fisGauss.width, fisGauss.height);
+                if (measure) fisBest[b] = bestBias(session, fis, reference, fisBias[b]);
+                if (b == 0 || measure) {
+                    fis.settings.apply("ibl.pyramid=gauss6");
+                    fis.settings.apply("ibl.mip_bias=0");
+                    RenderResult fisGauss = session.render(fis);
+                    fisGauss6[b] = rmse(fisGauss, reference);
+                    if (measure) fisGauss6Best[b] = bestBias(session, fis, reference, fisGauss6Bias[b]);
+                    fis.settings.apply("ibl.pyramid=source");
+                    writeExr(outputDir() / ("fis_gauss6_" + std::string(m.name) + "_" + std::to_string(budgets[b].first) + ".exr"),
+                             fisGauss.hdr.data(), fisGauss.width, fisGauss.height);
+                }
                 writeExr(outputDir() / ("fis_" + std::string(m.name) + "_" + std::to_string(budgets[b].first) + ".exr"),
                          importance.hdr.data(), importance.width, importance.height);
             }
