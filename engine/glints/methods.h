@@ -12,6 +12,7 @@
 
 #include "core/params.h"
 #include "gl/program.h"
+#include "glints/glint_mapping.h"
 
 namespace glimmer {
 
@@ -71,14 +72,24 @@ struct GlintMethod {
     // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
     // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
     bool glintPostPass = false;
+    // How the glint material (scene.h GlintMaterial) sets this method's parameters per material (glint_mapping.h);
+    // parameters without a mapping keep their default unless --set. Each row cites the paper's definition.
+    std::vector<ParamMapping> materialMapping;
+    // The method's shared GPU data (createResources' update()) are built from one material's values: the glinty
+    // material with the largest value of this parameter (wang2020: particles, so that every material thins the
+    // densest material's tree), or the first glinty material when empty. Shaders read those values as PS_<NAME>.
+    std::string sharedDataMaterial;
 };
 
 const std::vector<GlintMethod>& glintMethods();
 // Throws UsageError("--method: unknown method 'x' (known: ...)").
 const GlintMethod& findGlintMethod(const std::string& id);
 
-// GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter.
-std::string methodParamsGlsl(const GlintMethod& method);
+// GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter. With perMaterial
+// (the lighting pass), P_<NAME> reads the row of the material g_glintMaterial in a storage buffer
+// (BINDING_MATERIAL_METHOD_PARAMS, kMaxMethodParams floats per material, packMethodParams order) and the block
+// holds the shared values (PS_<NAME>); otherwise P_<NAME> and PS_<NAME> both read the block.
+std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial = false);
 // Packs values in the order of methodParamsGlsl (std140 vec4 array).
 std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values);
 

@@ -6,7 +6,8 @@
 #define BINDING_FRAME 0              // uniform FrameBlock (common/frame.glsl; C++ FrameUniforms)
 #define BINDING_LIGHTS 1             // storage LightBlock
 #define BINDING_MATERIALS 2          // storage MaterialBlock
-#define BINDING_METHOD_PARAMS 3      // uniform: the glint method's parameters (P_<NAME>)
+#define BINDING_METHOD_PARAMS 3      // uniform: the glint method's shared parameters (PS_<NAME>; P_<NAME> outside lighting)
+#define BINDING_MATERIAL_METHOD_PARAMS 4  // storage: the method's parameters per material (P_<NAME> in lighting)
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15

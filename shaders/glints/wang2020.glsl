@@ -80,11 +80,12 @@ GlintPixel glintSetup(GlintSurface s) {
     for (int i = 0; i < WANG_MAX_LAMBDAS; ++i) px.lambdas[i] = 1.0;
     float det = s.duvdx.x * s.duvdy.y - s.duvdx.y * s.duvdy.x;
     px.area = abs(det);
-    // Per-material density (material scale x glint mask, clamped to 1): independent thinning of the tree's
-    // particles (particle k kept when its hash channel 5 is below the scale), so N x scale particles per unit UV
-    // square without a per-material tree. Scale 1 keeps every particle (the CPU reference's case).
-    float keep = clamp(s.densityScale, 0.0, 1.0);
-    px.expected = P_PARTICLES * keep * px.area;
+    // Per-material density (this material's N over the tree's N, x material scale x glint mask, clamped to 1):
+    // independent thinning of the tree's particles (particle k kept when its hash channel 5 is below the keep
+    // fraction), so N x scale particles per unit UV square without a per-material tree. The tree is built for the
+    // densest glinty material (PS_PARTICLES, GlintMethod::sharedDataMaterial); keep 1 is the CPU reference's case.
+    float keep = clamp(s.densityScale * P_PARTICLES / max(PS_PARTICLES, 1e-30), 0.0, 1.0);
+    px.expected = PS_PARTICLES * keep * px.area;
     px.scale = px.expected < P_MICRO_MAX ? WANG_SCALE_MICRO
              : (px.expected > P_MACRO_MIN ? WANG_SCALE_MACRO : WANG_SCALE_MESO);
     if (px.scale == WANG_SCALE_MESO && P_TRANSITION > 0.0) {
@@ -107,7 +108,7 @@ GlintPixel glintSetup(GlintSurface s) {
     mat2 inverseJ = inverse(mat2(s.duvdx, s.duvdy));
     vec2 halfExtent = 0.5 * (abs(s.duvdx) + abs(s.duvdy));
     vec2 lo = s.uv - halfExtent, hi = s.uv + halfExtent;
-    int depth = int(P_DEPTH + 0.5);
+    int depth = int(PS_DEPTH + 0.5);   // the shared tree's depth
     float extent = max(2.0 * max(halfExtent.x, halfExtent.y), 1e-30);
     int startLevel = clamp(int(floor(-log2(extent))), 0, depth);
     float cells = exp2(float(startLevel));
@@ -183,7 +184,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     if (px.expected <= 0.0 || h.z <= 1e-4 || s.densityScale <= 0.0) return 0.0;
     float P = min(wangDpf(wi, wo), 1.0);
     float reflecting = wangReflectingCount(px, P);
-    float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
+    float sigmaO = 2.0 * PI * (1.0 - cos(PS_GAMMA * PI / 180.0));   // the shared table's gamma
     float D = 4.0 * max(dot(wi, h), 0.0) * reflecting / (px.expected * sigmaO * h.z);
     return isnan(D) || isinf(D) ? 0.0 : D;
 }
