@@ -8,6 +8,7 @@
 // ctest asserts a representative subset at 128x128; GLIMMER_MEASURE=1 runs the full table (README).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
