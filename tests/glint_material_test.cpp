@@ -188,7 +188,7 @@ TEST(GlintMapping, SetOverridesTheMappedValueAndRangesClamp) {
     EXPECT_FLOAT_EQ(materialParams(findGlintMethod("deliot2023"), m, settings.methodValues("deliot2023"))["log_density"], 11.0f);
     // --list-params says which parameters are mapped and that --set overrides them.
     std::string text = describeParams();
-    EXPECT_NE(text.find("per material: log_density = ln(density)"), std::string::npos);
+    EXPECT_NE(text.find("per material: log_density = ln(density_per_uv)"), std::string::npos);
     EXPECT_NE(text.find("per material: microfacet_roughness = (angular_size)^2 alpha^-2"), std::string::npos);
 }
 

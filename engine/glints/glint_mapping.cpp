@@ -10,7 +10,7 @@ namespace glimmer {
 
 const char* glintQuantityName(GlintQuantity q) {
     switch (q) {
-        case GlintQuantity::Density: return "density";
+        case GlintQuantity::Density: return "density_per_uv";
         case GlintQuantity::AngularSize: return "angular_size";
         case GlintQuantity::Alpha: return "alpha";
         case GlintQuantity::Anisotropy: return "anisotropy";

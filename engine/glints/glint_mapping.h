@@ -37,7 +37,7 @@ struct ParamMapping {
     std::string why;   // the paper's definition the formula follows (for --list-params and the docs)
 };
 
-// Name of a quantity as written in formulas and method files ("density", "angular_size", ...).
+// Name of a quantity as written in formulas and method files ("density_per_uv", "angular_size", ...).
 const char* glintQuantityName(GlintQuantity q);
 // The quantity's value for a material.
 float glintQuantity(const Material& m, GlintQuantity q);
