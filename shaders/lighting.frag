@@ -29,14 +29,54 @@ layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
 layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
 layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
 layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+// rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
+layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
+// The part of o_color that is the lights' specular on glinty materials: the TAA resolve keeps it out of its
+// neighbourhood clipping (shaders/image/taa_resolve.frag). Written only where TAA attaches a target.
+layout(location = 3) out vec4 o_glintPart;
 
 vec3 worldPosition(ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(u_viewport.xy) * 2.0 - 1.0;
     vec4 p = u_inverseViewProjection * vec4(ndc, depth, 1.0);
     return p.xyz / p.w;
+}
+
+// TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
+// position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
+vec3 tangentPlanePoint(vec2 screen, vec3 anchor, vec3 n) {
+    vec2 ndc = screen / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 near = u_inverseViewProjection * vec4(ndc, 1.0, 1.0);   // reversed Z: depth 1 is the near plane
+    vec3 direction = normalize(near.xyz / near.w - u_cameraPosition.xyz);
+    float cosine = dot(direction, n);
+    if (abs(cosine) < 1e-3) return anchor;
+    float t = dot(anchor - u_cameraPosition.xyz, n) / cosine;
+    return t > 0.0 ? u_cameraPosition.xyz + direction * t : anchor;
+}
+
+// Moves the glint footprint of a jittered pixel to its unjittered centre. The jittered image is the unjittered one
+// moved by u_jitter.xy pixels, so that centre lies at pixel + 0.5 + u_jitter.xy here. The UV is taken as an affine
+// map of the tangent plane (exact for planar mappings), fitted to the G-buffer's derivatives at the jittered centre;
+// the unjittered centre and its one-pixel neighbours then give the UV, its derivatives (which change across the
+// screen under perspective: at grazing angles a half-pixel shift changes the footprint by 10-20%) and the position.
+void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
+    vec2 centre = vec2(s.pixel) + 0.5;
+    vec3 p = tangentPlanePoint(centre, position, s.n);
+    vec3 dx = tangentPlanePoint(centre + vec2(1.0, 0.0), position, s.n) - p;
+    vec3 dy = tangentPlanePoint(centre + vec2(0.0, 1.0), position, s.n) - p;
+    mat2 planeDerivatives = mat2(vec2(dot(dx, s.t), dot(dx, s.b)), vec2(dot(dy, s.t), dot(dy, s.b)));
+    if (abs(determinant(planeDerivatives)) < 1e-12) return;
+    mat2 planeToUv = mat2(s.duvdx, s.duvdy) * inverse(planeDerivatives);
+    vec2 moved = centre + u_jitter.xy;
+    vec3 q = tangentPlanePoint(moved, position, s.n);
+    vec3 qx = tangentPlanePoint(moved + vec2(1.0, 0.0), position, s.n) - q;
+    vec3 qy = tangentPlanePoint(moved + vec2(0.0, 1.0), position, s.n) - q;
+    s.uv += planeToUv * vec2(dot(q - p, s.t), dot(q - p, s.b));
+    s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
+    s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
+    position = q;
 }
 
 // Direction towards the light and the irradiance it delivers at normal incidence (KHR_lights_punctual: point
@@ -80,6 +120,7 @@ void main() {
         vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
                                 : u_skyColor.rgb;
         o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
+        o_glintPart = vec4(0.0);
 #ifdef GLINT_POST_PASS
         o_glintEnvironment = vec4(0.0);
         o_glintLights = vec4(0.0);
@@ -110,6 +151,14 @@ void main() {
     bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
 
     vec3 position = worldPosition(pixel, depth);
+    // TAA jitters the projection by u_jitter.xy pixels. Glint methods filter their NDF over the pixel footprint
+    // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
+    // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
+    // second time and lose its peak (docs/image.md, "glints"). So with taa.stable_glints a glinty pixel is shaded
+    // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
+    // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
+    // geometric edges of glinty surfaces are still anti-aliased.
+    if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
     s.position = position;
     vec3 toEye = normalize(u_cameraPosition.xyz - position);
     mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
@@ -124,11 +173,14 @@ void main() {
 
     // Environment lighting by the selected IBL mode (shaders/ibl/README.md), or the constant ambient when the
     // environment is off (--env none).
-    vec3 radiance = envEnabled()
+    // Ambient occlusion darkens this term only, never the lights (docs/ambient_occlusion.md).
+    vec4 occlusion = texture(u_ambientOcclusion, (vec2(pixel) + 0.5) / vec2(u_viewport.xy));
+    vec3 radiance = occlusion.rgb * (envEnabled()
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
-        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
     float firstLightD = 0.0;
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
+    vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
     int lightCount = int(u_exposure.y);
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;
@@ -151,6 +203,8 @@ void main() {
             lightGlints += specular * irradiance * wi.z;
             specular = vec3(0.0);
         }
+#else
+        if (glinty) glintPart += specular * irradiance * wi.z;
 #endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
@@ -168,9 +222,13 @@ void main() {
         case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
         case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
         case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
+        case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
         default: result = vec4(radiance, 1.0); break;
     }
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+    // Methods with a glint post pass add their (blurred) glints after this pass: TAA clips them with the rest.
+    bool finiteResult = all(equal(o_color.rgb, result.rgb));
+    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
 #ifdef GLINT_POST_PASS
     bool postGlints = view == VIEW_FINAL && glinty;
     o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))

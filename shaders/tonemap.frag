@@ -1,26 +1,34 @@
-// HDR radiance to display: exposure, ACES-fitted curve (Narkowicz 2015), sRGB encoding.
-// Debug views (u_viewport.w != 0) are shown without tone mapping, clamped, so channels read directly.
+// HDR radiance to display: bloom mixed in (Jimenez 2014: a lerp towards the blurred image keeps energy),
+// exposure (manual stops times the metered exposure when exposure=auto), a tone curve (image/tone_curves.glsl),
+// sRGB encoding. Debug views (u_viewport.w != 0) are shown without any of that, clamped, so channels read directly; the albedo
+// (a colour) is sRGB-encoded like every PNG colour, so it displays as the base colour it is.
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
+#include "image/tone_curves.glsl"
 
 layout(binding = UNIT_TONEMAP_HDR) uniform sampler2D t_hdr;
+layout(binding = UNIT_TONEMAP_BLOOM) uniform sampler2D t_bloom;   // half resolution, bilinear
+layout(std430, binding = BINDING_EXPOSURE_STATE) readonly buffer ExposureState { float u_meteredEv; float u_targetEv; };
+
+layout(location = 0) uniform int u_toneCurve;       // TONEMAP_*
+layout(location = 1) uniform float u_bloomStrength; // 0: no bloom (t_bloom is not read)
+layout(location = 2) uniform int u_autoExposure;    // 1: multiply by 2^u_meteredEv
+layout(location = 3) uniform float u_bloomScale;    // 1 / bloom levels (t_bloom holds their sum)
+
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
-
-vec3 acesFitted(vec3 x) {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
-
-vec3 linearToSrgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 
 void main() {
     vec3 hdr = texelFetch(t_hdr, ivec2(gl_FragCoord.xy), 0).rgb;
     int view = u_viewport.w;
     vec3 display;
-    if (view == VIEW_FINAL) display = linearToSrgb(acesFitted(hdr * u_exposure.x));
+    if (view == VIEW_FINAL) {
+        if (u_bloomStrength > 0.0)
+            hdr = mix(hdr, textureLod(t_bloom, gl_FragCoord.xy / vec2(u_viewport.xy), 0.0).rgb * u_bloomScale,
+                      u_bloomStrength);
+        float exposure = u_exposure.x * (u_autoExposure != 0 ? exp2(u_meteredEv) : 1.0);
+        display = linearToSrgb(applyToneCurve(u_toneCurve, hdr * exposure));
+    } else if (view == VIEW_ALBEDO) display = linearToSrgb(hdr);
     else if (view == VIEW_NORMAL || view == VIEW_TANGENT) display = hdr * 0.5 + 0.5;
     else if (view == VIEW_UV) display = vec3(fract(hdr.xy), 0.0);
     else display = clamp(hdr, 0.0, 1.0);

@@ -14,6 +14,7 @@
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
 #include "ui/ui_renderer.h"
+#include "support/ui_canvas.h"
 
 namespace glimmer::ui {
 namespace {
@@ -141,20 +142,7 @@ TEST(PanelFit, ScaleIsAnIntegerThatGrowsWithTheWindow) {
     EXPECT_EQ(panelLayout(640, 360, kMaxStatsLines).scale, 1);
 }
 
-struct Canvas {
-    int width, height;
-    gl::Texture texture;
-    gl::Framebuffer framebuffer;
-    Canvas(int w, int h) : width(w), height(h) {
-        texture = gl::createTexture2D(GL_RGBA8, w, h);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        framebuffer = gl::Framebuffer(fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture.id(), 0);
-        const float black[4] = {0, 0, 0, 1};
-        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, black);
-    }
-};
+using Canvas = test::UiCanvas;
 
 // Every glyph of the panel, drawn by the UI renderer at each window size, matches the font table pixel for
 // pixel: lit cells in the text colour, unlit ones not.
@@ -172,9 +160,8 @@ TEST(PanelFit, EveryLabelRendersFromTheFontTableAtThreeWindowSizes) {
             glBindFramebuffer(GL_FRAMEBUFFER, canvas.framebuffer.id());
             renderer.draw(ui.drawList(), size.width, size.height);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            std::vector<uint8_t> p(size_t(size.width) * size.height * 4);
-            glGetTextureImage(canvas.texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(p.size()), p.data());
-            auto at = [&](int x, int y) { return &p[(size_t(size.height - 1 - y) * size.width + x) * 4]; };
+            std::vector<uint8_t> p = canvas.pixels();
+            auto at = [&](int x, int y) { return canvas.at(p, x, y); };
             size_t glyphs = 0, mismatches = 0;
             for (const Quad& q : ui.drawList().quads()) {
                 if (q.glyph < 0) continue;

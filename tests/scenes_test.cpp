@@ -94,13 +94,13 @@ ExpectedCounts expectedFromJson(const fs::path& file) {
     auto attribute = [](const nlohmann::json& p, const char* name) {
         return p["attributes"].contains(name) ? p["attributes"][name].get<int>() : -1;
     };
-    std::set<std::tuple<int, int, int, int, int>> geometries;
+    std::set<std::tuple<int, int, int, int, int, int>> geometries;
     bool needsDefaultMaterial = false;
     for (const auto& mesh : g["meshes"])
         for (const auto& p : mesh["primitives"]) {
             if (!isTriangles(p)) continue;
             geometries.insert({attribute(p, "POSITION"), attribute(p, "NORMAL"), attribute(p, "TANGENT"),
-                               attribute(p, "TEXCOORD_0"), p.value("indices", -1)});
+                               attribute(p, "TEXCOORD_0"), attribute(p, "COLOR_0"), p.value("indices", -1)});
             needsDefaultMaterial |= !p.contains("material");
         }
     e.meshes = geometries.size();
@@ -340,30 +340,35 @@ TEST(ScenesGltf, TextureTransformChangesTheSampledTexels) {
 // Tangent generation
 
 // A planar quad whose UV axes are rotated and mirrored relative to the geometry: the generated tangent must be
-// the unit dP/du, orthogonal to the normal, and the sign w must make w * cross(n, t) point along dP/dv.
+// the unit dP/du, orthogonal to the normal, and the sign w must make w * cross(n, t) point along dP/dv (UvUp, the
+// built-in scenes) or along -dP/dv (ImageUp, glTF: v runs down the image, normal maps are +Y up).
 TEST(ScenesTangents, GeneratedFramesFollowUvDirections) {
-    for (bool mirrored : {false, true})
-        for (float angle : {0.0f, 0.7f, 2.5f}) {
-            glimmer::MeshData mesh;
-            glm::vec3 n = glm::normalize(glm::vec3(0.2f, 1.0f, -0.3f));
-            glm::vec3 a = glm::normalize(glm::cross(n, glm::vec3(1, 0, 0))), b = glm::cross(n, a);
-            // dP/du and dP/dv for the UV mapping uv = R(angle) * (x, +-y) on the plane's (a, b) coordinates.
-            glm::vec3 dPdu = std::cos(angle) * a + std::sin(angle) * b;
-            glm::vec3 dPdv = (mirrored ? -1.0f : 1.0f) * (-std::sin(angle) * a + std::cos(angle) * b);
-            for (glm::vec2 uv : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
-                mesh.positions.push_back(uv.x * dPdu + uv.y * dPdv);
-                mesh.normals.push_back(n);
-                mesh.uvs.push_back(uv);
+    using glimmer::BitangentConvention;
+    for (BitangentConvention convention : {BitangentConvention::UvUp, BitangentConvention::ImageUp})
+        for (bool mirrored : {false, true})
+            for (float angle : {0.0f, 0.7f, 2.5f}) {
+                glimmer::MeshData mesh;
+                glm::vec3 n = glm::normalize(glm::vec3(0.2f, 1.0f, -0.3f));
+                glm::vec3 a = glm::normalize(glm::cross(n, glm::vec3(1, 0, 0))), b = glm::cross(n, a);
+                // dP/du and dP/dv for the UV mapping uv = R(angle) * (x, +-y) on the plane's (a, b) coordinates.
+                glm::vec3 dPdu = std::cos(angle) * a + std::sin(angle) * b;
+                glm::vec3 dPdv = (mirrored ? -1.0f : 1.0f) * (-std::sin(angle) * a + std::cos(angle) * b);
+                for (glm::vec2 uv : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+                    mesh.positions.push_back(uv.x * dPdu + uv.y * dPdv);
+                    mesh.normals.push_back(n);
+                    mesh.uvs.push_back(uv);
+                }
+                mesh.indices = {0, 1, 2, 0, 2, 3};
+                glimmer::generateTangents(mesh, convention);
+                const bool imageUp = convention == BitangentConvention::ImageUp;
+                const glm::vec3 wanted = imageUp ? -dPdv : dPdv;
+                for (const glm::vec4& t : mesh.tangents) {
+                    EXPECT_NEAR(glm::dot(glm::vec3(t), dPdu), 1.0f, 1e-5f);
+                    EXPECT_NEAR(glm::dot(glm::vec3(t), n), 0.0f, 1e-5f);
+                    EXPECT_GT(glm::dot(t.w * glm::cross(n, glm::vec3(t)), wanted), 0.99f);
+                    EXPECT_EQ(t.w, (mirrored != imageUp) ? -1.0f : 1.0f) << "(a, b, n) is right-handed; mirroring flips w";
+                }
             }
-            mesh.indices = {0, 1, 2, 0, 2, 3};
-            glimmer::generateTangents(mesh);
-            for (const glm::vec4& t : mesh.tangents) {
-                EXPECT_NEAR(glm::dot(glm::vec3(t), dPdu), 1.0f, 1e-5f);
-                EXPECT_NEAR(glm::dot(glm::vec3(t), n), 0.0f, 1e-5f);
-                EXPECT_GT(glm::dot(t.w * glm::cross(n, glm::vec3(t)), dPdv), 0.99f);
-                EXPECT_EQ(t.w, mirrored ? -1.0f : 1.0f) << "(a, b, n) is right-handed; mirroring flips w";
-            }
-        }
 }
 
 // On a curved surface with an analytic parametrisation (the UV sphere: u = r phi, v = r theta) the generated
@@ -372,7 +377,7 @@ TEST(ScenesTangents, GeneratedTangentsMatchAnalyticSphereTangents) {
     glimmer::MeshData sphere = glimmer::makeUvSphere(1.0f, 64, 32);
     std::vector<glm::vec4> analytic = sphere.tangents;
     sphere.tangents.clear();
-    glimmer::generateTangents(sphere);
+    glimmer::generateTangents(sphere, glimmer::BitangentConvention::UvUp);   // the built-in scenes' convention
     expectValidFrames(sphere, "sphere");
     for (size_t v = 0; v < sphere.positions.size(); ++v) {
         if (std::abs(sphere.normals[v].y) > 0.95f) continue;  // pole rows: dP/du vanishes

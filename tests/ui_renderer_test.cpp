@@ -7,6 +7,7 @@
 #include "platform/context.h"
 #include "ui/font.h"
 #include "ui/ui_renderer.h"
+#include "support/ui_canvas.h"
 #include "ui/settings_panel.h"
 #include "core/clock.h"
 
@@ -16,29 +17,7 @@
 namespace glimmer::ui {
 namespace {
 
-struct Canvas {
-    int width, height;
-    gl::Texture texture;
-    gl::Framebuffer framebuffer;
-    Canvas(int w, int h) : width(w), height(h) {
-        texture = gl::createTexture2D(GL_RGBA8, w, h);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        framebuffer = gl::Framebuffer(fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture.id(), 0);
-        const float black[4] = {0, 0, 0, 1};
-        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, black);
-    }
-    // RGBA at (x, y) in UI coordinates (top-left origin).
-    std::vector<uint8_t> pixels() const {
-        std::vector<uint8_t> p(size_t(width) * height * 4);
-        glGetTextureImage(texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(p.size()), p.data());
-        return p;
-    }
-    const uint8_t* at(const std::vector<uint8_t>& p, int x, int y) const {
-        return &p[(size_t(height - 1 - y) * width + x) * 4];
-    }
-};
+using Canvas = test::UiCanvas;
 
 TEST(UiRenderer, GlyphsAndRectanglesMatchTheFontTableInOneDraw) {
     auto context = createHeadlessContext(Backend::Egl);

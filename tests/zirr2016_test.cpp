@@ -8,7 +8,7 @@
 #include <numeric>
 #include <random>
 
-#include "reference/deliot2023_probe.h"
+#include "glints/method_probe.h"
 #include "reference/zirr2016_reference.h"
 #include "platform/context.h"
 #include "render/aov.h"

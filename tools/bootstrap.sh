@@ -30,7 +30,7 @@ case "$mode" in run|test) ;; *) echo "bootstrap.sh: unknown mode '$mode' (use ru
 packages=(cmake ninja-build g++ pkg-config libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libegl1-mesa-dev
           libgl-dev libgles-dev libgl1-mesa-dri libtinygltf-dev libopenimageio-dev openimageio-tools
           nlohmann-json3-dev libgtest-dev python3-glad xvfb xauth x11-utils python3-matplotlib zlib1g-dev
-          libbullet-dev libmeshoptimizer-dev)
+          libbullet-dev libmeshoptimizer-dev libembree-dev)
 [ "$mode" = test ] && [ "$fuzz" = 1 ] && packages+=(clang libclang-rt-14-dev)   # tools/fuzz.sh
 missing=()
 for p in "${packages[@]}"; do
@@ -51,7 +51,7 @@ if [ "$mode" = test ]; then
   export GALLIUM_OVERRIDE_CPU_CAPS=avx   # bit-stable llvmpipe output across AVX2 / AVX-512 machines
   ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
   # The loaders under ASan + UBSan: their tests, then each libFuzzer target for a minute (fails on a crash).
-  [ "$fuzz" = 0 ] || bash tools/fuzz.sh "${GLIMMER_FUZZ_SECONDS:-60}"
+  [ "$fuzz" = 0 ] || bash tools/fuzz.sh "${GLIMMER_FUZZ_SECONDS:-40}"
 else
   exec "$build_dir/glimmer" main
 fi

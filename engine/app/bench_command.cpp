@@ -14,22 +14,24 @@
 #include "core/cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "glints/user_methods.h"
 
 namespace glimmer {
 
 static const char* kBenchHelp =
     "usage: glimmer bench [--suite NAME] [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--warmup N]\n"
     "                     [--lights K] [--camera NAME] [--set KEY=VALUE ...] [--env SPEC] [--ibl MODE]\n"
-    "                     [--backend egl|osmesa]\n"
+    "                     [--backend egl|osmesa] [--method-file PATH.glsl ...]\n"
     "                     [--json FILE] [--csv FILE] [--markdown FILE]\n"
     "       glimmer bench --temporal [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--step S]\n"
-    "                     [--json FILE] [--markdown FILE]\n"
+    "                     [--aa off|taa] [--json FILE] [--markdown FILE]\n"
     "       glimmer bench --list-suites\n"
     "  Times each scene x method (x variant x density of the suite): warm-up frames, then N frames each closed by\n"
     "  glFinish (wall clock; median, min, max), ratio to smooth measured in the same run. Without --suite: one case\n"
-    "  per --scenes (or --scene) and --methods (or --method). Smooth is always timed. The Markdown table goes to\n"
-    "  stdout, progress to stderr. --temporal measures glint flicker along a dolly of N cameras (step S x the\n"
-    "  distance to the target per frame, default 0.01).\n";
+    "  per --scenes (or --scene) and --methods (or --method; file:PATH.glsl names a user method). Smooth is\n"
+    "  always timed. The Markdown table goes to stdout, progress to stderr. --temporal measures glint flicker\n"
+    "  along a dolly of N cameras (step S x the distance to the target per frame, default 0.01); with --aa it\n"
+    "  measures the displayed image rendered with that anti-aliasing instead of the glint AOV.\n";
 
 static std::vector<std::string> splitList(const std::string& text, const char* flag) {
     std::vector<std::string> items;
@@ -63,7 +65,8 @@ int runBenchCommand(const std::vector<std::string>& argList) {
         for (const bench::BenchSuite& s : bench::benchSuites()) std::printf("  %-22s %s\n", s.name.c_str(), s.description.c_str());
         return 0;
     }
-    bool sceneGiven = given(argList, "--scene"), methodGiven = given(argList, "--method");
+    bool sceneGiven = given(argList, "--scene"),
+         methodGiven = given(argList, "--method") || given(argList, "--method-file");
     bool temporal = args.flag("--temporal");
     RenderRequest request = readCommonRenderOptions(args, "plane90");
     int width = temporal ? 640 : 1280, height = temporal ? 360 : 720;
@@ -71,8 +74,9 @@ int runBenchCommand(const std::vector<std::string>& argList) {
     std::vector<std::string> scenes, methods;
     if (auto list = args.value("--scenes")) scenes = splitList(*list, "--scenes");
     else if (sceneGiven) scenes = {request.scene};
-    if (auto list = args.value("--methods")) methods = splitList(*list, "--methods");
-    else if (methodGiven) methods = {request.settings.method};
+    if (auto list = args.value("--methods")) {
+        for (const std::string& id : splitList(*list, "--methods")) methods.push_back(resolveGlintMethod(id, "--methods"));
+    } else if (methodGiven) methods = {request.settings.method};
     // readCommonRenderOptions consumed (and validated) the --set flags; each case re-applies them to its own settings.
     std::vector<std::string> extraSets;
     for (size_t i = 0; i < argList.size(); ++i) {
@@ -107,6 +111,10 @@ int runBenchCommand(const std::vector<std::string>& argList) {
         options.environment = request.environment;
         options.ibl = request.settings.ibl;
         options.progress = progress;
+        if (auto aa = args.value("--aa")) {
+            if (*aa != "off" && *aa != "taa") throw UsageError("--aa: '" + *aa + "' is not off or taa");
+            options.aa = *aa;
+        }
         if (csvPath) throw UsageError("--csv: not available with --temporal (use --json)");
         args.finish();
         std::vector<bench::TemporalResult> results = bench::runTemporal(options);

@@ -8,5 +8,6 @@ namespace glimmer {
 int runRenderCommand(const std::vector<std::string>& args);
 int runViewCommand(const std::vector<std::string>& args);
 int runBenchCommand(const std::vector<std::string>& args);
+int runCheckCommand(const std::vector<std::string>& args);   // check-method
 
 }  // namespace glimmer

@@ -4,11 +4,13 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
+#include "glints/user_methods.h"
 #include "render/aov.h"
 #include "render/environment.h"
 #include "ibl/ibl_modes.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/scene_loader.h"
 
 namespace glimmer {
 
@@ -19,8 +21,20 @@ RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaul
     request.scene = args.valueOr("--scene", defaultScene);
     request.camera = args.valueOr("--camera", "");
     request.backend = parseHeadlessBackend(args.valueOr("--backend", "egl"));
-    request.settings.method = args.valueOr("--method", defaultMethod);
-    findGlintMethod(request.settings.method);
+    // User methods before --method and --set name them: --method-file (repeatable; the first is the method unless
+    // --method says otherwise), then the scene file's "methodFiles" (the first is the method when neither is given).
+    std::vector<std::string> methodFiles = args.values("--method-file");
+    std::string fileMethod;
+    for (const std::string& file : methodFiles) {
+        std::string id = loadUserMethodFile(file);
+        if (fileMethod.empty()) fileMethod = id;
+    }
+    for (const std::string& file : sceneMethodFiles(request.scene)) {
+        std::string id = loadUserMethodFile(file);
+        if (fileMethod.empty()) fileMethod = id;
+    }
+    auto method = args.value("--method");
+    request.settings.method = method ? resolveGlintMethod(*method) : (fileMethod.empty() ? defaultMethod : fileMethod);
     request.settings.ibl = args.valueOr("--ibl", "prefiltered");
     checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);
     for (const std::string& assignment : args.values("--set")) request.settings.apply(assignment);

@@ -1,4 +1,4 @@
-// glimmer: a deferred OpenGL 4.5 engine for real-time glints. Subcommands: render, view, bench.
+// glimmer: a deferred OpenGL 4.5 engine for real-time glints. Subcommands: render, view, bench, check-method, main.
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +16,7 @@ static const char* kUsage =
     "  render   offscreen render to PNG/EXR (glimmer render --help)\n"
     "  view     the walkthrough window (glimmer view --help)\n"
     "  bench    time renders (glimmer bench --help)\n"
+    "  check-method PATH.glsl  run the interface rules on a user glint method (glimmer check-method --help)\n"
     "  main     the window when a display exists, else an offscreen render of the default scene\n"
     "  --version  print the version\n";
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
         if (command == "render") return glimmer::runRenderCommand(args);
         if (command == "view") return glimmer::runViewCommand(args);
         if (command == "bench") return glimmer::runBenchCommand(args);
+        if (command == "check-method") return glimmer::runCheckCommand(args);
         if (command == "main") {
             if (std::find(args.begin(), args.end(), "--help") != args.end()) {
                 std::fputs(kMainHelp, stdout);

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "glints/user_methods.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
 #include "render/settings.h"
@@ -23,12 +24,14 @@ static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
     "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
     "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
-    "                      [--allow-outside-uris] --out FILE.png|FILE.exr\n"
+    "                      [--allow-outside-uris] [--method-file PATH.glsl ...] --out FILE.png|FILE.exr\n"
     "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
     "       glimmer render --path CAMERA_PATH.json [--frames N] [--fps F] [scene/size/method options]\n"
     "                      --out DIR/%04d.png [--video FILE.mp4|.gif|.webm]\n"
     "       glimmer render --list-params | --list-aovs | --list-scenes\n"
-    "  --method defaults to deliot2023 (--method smooth: no glints).\n"
+    "  --method defaults to deliot2023 (--method smooth: no glints). --method-file PATH.glsl loads a user method\n"
+    "  (docs/user_methods.md; the first one is the method unless --method is given); anywhere a method is named,\n"
+    "  file:PATH.glsl loads one too (--compare deliot2023,file:my_glints.glsl).\n"
     "  --path renders the camera path recorded in the window (R) at a fixed time step of 1/F s (default 30 fps;\n"
     "  default N: the whole path); --video encodes the frames with the ffmpeg program.\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
@@ -40,7 +43,12 @@ static const char* kRenderHelp =
 int runRenderCommand(const std::vector<std::string>& argList) {
     ArgReader args("render", argList);
     if (args.flag("--help")) { std::fputs(kRenderHelp, stdout); return 0; }
-    if (args.flag("--list-params")) { std::fputs(describeParams().c_str(), stdout); return 0; }
+    if (args.flag("--list-params")) {
+        // With the user methods given, so their parameters are listed like the built-ins'.
+        for (const std::string& file : args.values("--method-file")) loadUserMethodFile(file);
+        std::fputs(describeParams().c_str(), stdout);
+        return 0;
+    }
     if (args.flag("--list-aovs")) {
         for (const AovInfo& aov : aovTable()) std::printf("  %-10s %s\n", aov.name.c_str(), aov.meaning.c_str());
         return 0;
@@ -77,7 +85,7 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     if (compare) {
         std::stringstream list(*compare);
         for (std::string id; std::getline(list, id, ',');)
-            if (!id.empty()) compareMethods.push_back(id);
+            if (!id.empty()) compareMethods.push_back(resolveGlintMethod(id, "--compare"));   // file:PATH too
         if (compareMethods.empty()) throw UsageError("--compare: expected a comma-separated list of methods");
         bench::comparisonMethods(compareMethods);  // unknown ids fail before any rendering
     }

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
+#include "glints/user_methods.h"
 #include "ui/input_script.h"
 
 namespace glimmer {
@@ -19,6 +20,7 @@ static const char* kViewHelp =
     "usage: glimmer view [--scene NAME|PATH] [--camera NAME] [--size WxH] [--method NAME] [--set KEY=VALUE ...]\n"
     "                    [--env PATH|none|procedural|constant:R,G,B] [--ibl MODE] [--spp N] [--aov NAME]\n"
     "                    [--shader-dir DIR] [--no-vsync] [--hide-ui] [--split METHOD [--split-at F]]\n"
+    "                    [--method-file PATH.glsl ...]\n"
     "                    [--path CAMERA_PATH.json] [--input-script FILE]\n"
     "                    [--render-scale F] [--target-fps FPS] [--walkthrough] [--stats]\n"
     "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
@@ -28,6 +30,7 @@ static const char* kViewHelp =
     "  --target-fps FPS   adapt the render scale to hold FPS (0: fixed scale); default 12 on software\n"
     "                     renderers (llvmpipe), off on GPUs\n"
     "  --walkthrough      play the camera path (key P) from the first frame\n"
+    "  --method-file PATH.glsl  a user glint method (docs/user_methods.md), edited live like the built-ins\n"
     "  --stats            print frame times (median, p95) as JSON at exit\n"
     "  WASD move, Q/E down/up (flying), Shift faster, wheel speed, right mouse button (or C) looks around,\n"
     "  1-9 scene cameras, P plays the camera path (the recorded one, else the scene's cameras), R records a path\n"
@@ -66,7 +69,7 @@ int runViewCommand(const std::vector<std::string>& argList) {
     options.targetFps = readFloat("--target-fps", 0.0f, 1000.0f);
     options.playWalkthrough = args.flag("--walkthrough");
     options.printStats = args.flag("--stats");
-    if (auto split = args.value("--split")) options.splitMethod = findGlintMethod(*split).id;
+    if (auto split = args.value("--split")) options.splitMethod = resolveGlintMethod(*split, "--split");
     if (auto at = args.value("--split-at")) {
         char* end = nullptr;
         options.splitPosition = std::strtof(at->c_str(), &end);
@@ -80,6 +83,14 @@ int runViewCommand(const std::vector<std::string>& argList) {
     }
     options.pathFile = args.value("--path");
     args.finish();
+    // The interactive window shows the game image by default (docs/image.md): TAA, a little bloom, auto exposure.
+    // Headless runs (--frames) keep the offscreen defaults so that their screenshot equals `glimmer render`.
+    if (options.frameLimit == 0) {
+        RenderSettings& settings = options.request.settings;
+        if (!settings.isSet("aa")) settings.apply("aa=taa");
+        if (!settings.isSet("bloom.strength")) settings.apply("bloom.strength=0.04");
+        if (!settings.isSet("exposure") && !settings.isSet("exposure.auto")) settings.apply("exposure=auto");
+    }
     if (options.screenshot) {
         imageFormatForPath(*options.screenshot, "--screenshot");
         checkOutputPath(*options.screenshot, "--screenshot");  // before the window opens and renders

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 
 #include "core/clock.h"
@@ -18,6 +19,7 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "gl/program.h"
+#include "glints/user_methods.h"
 #include "platform/glfw_window.h"
 #include "render/aov.h"
 #include "render/renderer.h"
@@ -126,7 +128,9 @@ public:
             } catch (const std::exception& e) {
                 log::warn("view: no shader hot reload: ", e.what());
             }
+            watchMethodFolders();
         }
+        refreshMethodFileChoices();
         if (options.splitMethod) {
             splitMethod_ = findGlintMethod(*options.splitMethod).id;
             splitFraction_ = std::clamp(options.splitPosition, 0.0f, 1.0f);
@@ -182,6 +186,9 @@ public:
             buildUi(uiInput, width, height);
             moveCamera(events, previous, now, width, height);
             previous = now;
+            // Eye adaptation: the metered exposure moves towards each frame's target with a 0.5 s time constant
+            // (headless --frames runs converge at once, like offscreen renders).
+            renderer_->setExposureAdaptation(options_.frameLimit == 0 && frame > 0 ? float(1.0 - std::exp(-dt / 0.5)) : 1.0f);
             drawFrame(width, height);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();
@@ -212,9 +219,114 @@ private:
     void pollShaderChanges() {
         if (!watcher_) return;
         std::vector<std::filesystem::path> changed = watcher_->poll();
+        for (auto& [folder, watcher] : methodWatchers_)
+            for (const auto& f : watcher->poll())
+                if (std::find(changed.begin(), changed.end(), f) == changed.end()) changed.push_back(f);
         if (changed.empty()) return;
         for (const auto& f : changed) log::info("view: shader changed: ", f.string());
+        replacedMethods_.clear();
+        reloadMethodHeaders(changed);
         reloadShaders(changed, false);
+        // A new header whose body does not compile: the last good program runs on, so its header (the parameter
+        // block's layout) comes back too.
+        for (const auto& [method, settings] : replacedMethods_) {
+            bool failed = false;
+            for (const auto& [program, error] : renderer_->shaderErrors()) failed |= program.find("lighting/") == 0;
+            if (!failed) continue;
+            registerGlintMethod(method);
+            applySettings(settings);
+        }
+        watchMethodFolders();
+        refreshMethodFileChoices();
+    }
+
+    // User methods (--method-file, glints/user_methods.h) may live anywhere: their folders and the folders of the
+    // files they include from outside the shader root are watched too (without subfolders).
+    void watchMethodFolders() {
+        if (!watcher_) return;
+        std::vector<std::filesystem::path> files = renderer_->shaderDependencies();
+        if (splitRenderer_) for (const auto& f : splitRenderer_->shaderDependencies()) files.push_back(f);
+        for (const GlintMethod& m : glintMethods())
+            if (m.isUserMethod()) files.push_back(m.sourceFile);
+        for (const auto& file : files) {
+            std::filesystem::path folder = file.parent_path();
+            auto rel = std::filesystem::relative(folder, watcher_->root());
+            bool underRoot = !rel.empty() && *rel.begin() != "..";
+            if (underRoot || methodWatchers_.count(folder)) continue;
+            try {
+                methodWatchers_[folder] = std::make_unique<FileWatcher>(folder, std::chrono::milliseconds(60),
+                                                                        FileWatcher::Mode::Inotify, false);
+                log::info("view: watching ", folder.string(), " for method edits");
+            } catch (const std::exception& e) {
+                log::warn("view: cannot watch ", folder.string(), ": ", e.what());
+            }
+        }
+    }
+
+    // A changed user method file: its header is parsed again before the program is rebuilt. A header that does
+    // not parse keeps the last good method and program (the error, file:line, stays on screen until fixed); a
+    // good one replaces the table entry, and the parameter values that still exist are kept (clamped).
+    void reloadMethodHeaders(std::vector<std::filesystem::path>& changed) {
+        for (auto it = changed.begin(); it != changed.end();) {
+            const GlintMethod* old = userMethodForFile(*it);
+            if (!old) { ++it; continue; }
+            const std::filesystem::path file = *it;
+            GlintMethod fresh;
+            try {
+                fresh = readUserMethodFile(file);
+                replacedMethods_.push_back({*old, renderer_->settings()});
+                std::string previous = registerGlintMethod(fresh);
+                methodFileErrors_.erase(file);
+                RenderSettings next = renderer_->settings();
+                ParamValues values = carryParamValues(next.methodValues(previous), fresh);
+                next.methods.erase(previous);
+                next.methods[fresh.id] = values;
+                if (next.method == previous) next.method = fresh.id;
+                if (splitMethod_ == previous) splitMethod_ = fresh.id;
+                // Same method id: only values change (the program is rebuilt below); a renamed method rebuilds.
+                applySettings(next);
+                std::string note = "method " + fresh.id + ": header read (" + std::to_string(fresh.params.size()) + " parameters)";
+                log::info("view: ", note);
+                showMessage(note);
+                ++it;
+            } catch (const std::exception& e) {
+                methodFileErrors_[file] = e.what();
+                log::error("view: ", e.what());
+                it = changed.erase(it);   // keep the last good program: do not rebuild from a broken header
+            }
+        }
+    }
+
+    // The panel's "load" buttons: method files of content/methods/ and of the folders of loaded methods.
+    void refreshMethodFileChoices() {
+        std::vector<std::filesystem::path> folders = {defaultContentDir() / "methods"};
+        for (const GlintMethod& m : glintMethods())
+            if (m.isUserMethod() && std::find(folders.begin(), folders.end(), m.sourceFile.parent_path()) == folders.end())
+                folders.push_back(m.sourceFile.parent_path());
+        methodFileChoices_.clear();
+        controls_.methodFileChoices.clear();
+        for (const auto& folder : folders)
+            for (const auto& file : methodFilesIn(folder)) {
+                if (userMethodForFile(file) || methodFileChoices_.size() >= 6) continue;
+                methodFileChoices_.push_back(file);
+                controls_.methodFileChoices.push_back(file.filename().string());
+            }
+    }
+
+    void loadMethodFile(const std::filesystem::path& file) {
+        try {
+            std::string id = loadUserMethodFile(file);
+            methodFileErrors_.erase(file);
+            RenderSettings next = renderer_->settings();
+            next.method = id;
+            applySettings(next);
+            showMessage("method " + id + " from " + displayPath(file));
+        } catch (const std::exception& e) {
+            methodFileErrors_[file] = e.what();
+            showMessage(e.what());
+        }
+        watchMethodFolders();
+        refreshMethodFileChoices();
     }
 
     // Rebuilds the programs using `changed` (or all, for F5). Errors stay in the overlay until fixed.
@@ -681,6 +793,7 @@ private:
         for (const auto& [program, error] : renderer_->shaderErrors()) all.push_back(error + "  [" + program + "]");
         if (!uiError_.empty()) all.push_back(uiError_ + "  [ui]");
         if (!methodError_.empty()) all.push_back(methodError_);
+        for (const auto& [file, error] : methodFileErrors_) all.push_back(error + "  [method file]");
         return all;
     }
 
@@ -717,6 +830,8 @@ private:
             if (result.sceneRequested >= 0 && result.sceneRequested != controls_.sceneIndex)
                 switchScene(controls_.sceneNames[size_t(result.sceneRequested)]);
             if (result.reloadShaders) reloadShaders({}, true);
+            if (result.loadMethodFile >= 0 && size_t(result.loadMethodFile) < methodFileChoices_.size())
+                loadMethodFile(methodFileChoices_[size_t(result.loadMethodFile)]);
             if (result.screenshot) pendingScreenshot_ = 1;
             drawStats(stats, width, height, statsHeight, margin, line);
             if (split_) drawSplitLabels(width, margin, line);
@@ -895,6 +1010,10 @@ private:
     std::unique_ptr<Renderer> splitRenderer_;  // created on the first split frame
     std::unique_ptr<ui::UiRenderer> uiRenderer_;
     std::unique_ptr<FileWatcher> watcher_;
+    std::map<std::filesystem::path, std::unique_ptr<FileWatcher>> methodWatchers_;   // user methods' folders
+    std::map<std::filesystem::path, std::string> methodFileErrors_;   // header errors, file:line: message
+    std::vector<std::filesystem::path> methodFileChoices_;            // what the panel's load buttons load
+    std::vector<std::pair<GlintMethod, RenderSettings>> replacedMethods_;   // entries a reload replaced (undo)
     std::unique_ptr<WindowResolution> resolution_;
     PresentTarget present_;
     ui::Context ui_;

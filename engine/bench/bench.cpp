@@ -36,6 +36,16 @@ const std::vector<BenchSuite>& benchSuites() {
          "",
          {},
          3},
+        // Issue 13's budget: TAA + exposure + bloom at most 15% of the atrium frame (docs/image.md).
+        {"image-pipeline",
+         "The image pipeline's cost: the same frames without (aa off, no bloom, manual exposure) and with TAA, "
+         "auto exposure and bloom 0.04; the per-pass times are in the JSON.",
+         {"atrium"},
+         {{"plain", {"aa=off", "bloom.strength=0", "exposure=0"}},
+          {"taa+exposure+bloom", {"aa=taa", "bloom.strength=0.04", "exposure=auto"}}},
+         "",
+         {},
+         0},
     };
     return suites;
 }

@@ -49,11 +49,14 @@ struct TemporalOptions {
     std::vector<std::string> extraSets;
     std::optional<std::string> environment;  // --env (default: the scene's)
     std::string ibl = "prefiltered";
+    // "" measures D (the glint AOV, unjittered). "off" or "taa" measures the displayed image instead (mean of its
+    // sRGB channels; bloom 0, manual exposure) rendered with that aa setting, after 8 still warm-up frames.
+    std::string aa;
     std::function<void(const std::string&)> progress;
 };
 
 struct TemporalResult {
-    std::string scene, method;
+    std::string scene, method, aa;
     std::vector<double> perPair;         // flicker of each consecutive frame pair
     double meanFlicker = 0.0, maxFlicker = 0.0, matchedFraction = 0.0;
 };

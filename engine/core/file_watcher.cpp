@@ -14,8 +14,8 @@ namespace fs = std::filesystem;
 // How often the modification-time fallback walks the tree (a small shader folder: microseconds per walk).
 static constexpr std::chrono::milliseconds kScanInterval{100};
 
-FileWatcher::FileWatcher(fs::path root, std::chrono::milliseconds debounce, Mode preferred)
-    : debounce_(debounce), mode_(preferred) {
+FileWatcher::FileWatcher(fs::path root, std::chrono::milliseconds debounce, Mode preferred, bool recursive)
+    : debounce_(debounce), mode_(preferred), recursive_(recursive) {
     std::error_code ec;
     root_ = fs::weakly_canonical(root, ec);
     if (ec || !fs::is_directory(root_)) throw Error(root.string() + ": cannot watch: not a directory");
@@ -47,7 +47,7 @@ void FileWatcher::addWatches(const fs::path& folder) {
         watchFolders_[wd] = dir;
         return true;
     };
-    if (!add(folder)) return;
+    if (!add(folder) || !recursive_) return;
     std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
          it.increment(ec))
@@ -71,7 +71,7 @@ void FileWatcher::readInotify() {
             if (folder == watchFolders_.end() || event->len == 0) continue;
             fs::path path = folder->second / event->name;
             if (event->mask & IN_ISDIR) {
-                if (event->mask & (IN_CREATE | IN_MOVED_TO)) addWatches(path);
+                if (recursive_ && event->mask & (IN_CREATE | IN_MOVED_TO)) addWatches(path);
                 continue;
             }
             // IN_CREATE alone is an empty new file; its content arrives with IN_CLOSE_WRITE.
@@ -85,6 +85,7 @@ void FileWatcher::scanModificationTimes(bool record) {
     std::map<fs::path, fs::file_time_type> now;
     for (auto it = fs::recursive_directory_iterator(root_, ec); !ec && it != fs::recursive_directory_iterator();
          it.increment(ec)) {
+        if (!recursive_ && it.depth() == 0 && it->is_directory()) it.disable_recursion_pending();
         if (!it->is_regular_file()) continue;
         std::error_code timeError;
         auto time = fs::last_write_time(it->path(), timeError);

@@ -16,8 +16,9 @@ public:
     using Clock = std::chrono::steady_clock;
     enum class Mode { Inotify, ModificationTime };
 
+    // recursive = false watches the files of `root` only (a user method's folder, which may be any folder).
     explicit FileWatcher(std::filesystem::path root, std::chrono::milliseconds debounce = std::chrono::milliseconds(60),
-                         Mode preferred = Mode::Inotify);
+                         Mode preferred = Mode::Inotify, bool recursive = true);
     ~FileWatcher();
     FileWatcher(const FileWatcher&) = delete;
     FileWatcher& operator=(const FileWatcher&) = delete;
@@ -36,6 +37,7 @@ private:
     std::filesystem::path root_;
     std::chrono::milliseconds debounce_;
     Mode mode_;
+    bool recursive_ = true;
     int inotify_ = -1;
     std::map<int, std::filesystem::path> watchFolders_;
     std::map<std::filesystem::path, std::filesystem::file_time_type> mtimes_;

@@ -17,6 +17,13 @@ std::string readTextFile(const std::filesystem::path& path) {
     return text.str();
 }
 
+std::string displayPath(const std::filesystem::path& path) {
+    std::error_code ec;
+    std::filesystem::path relative = std::filesystem::relative(path, std::filesystem::current_path(ec), ec);
+    if (ec || relative.empty() || *relative.begin() == "..") return path.string();
+    return relative.string();
+}
+
 // $variable, else beside the running executable (an installed <prefix>/bin/glimmer finds
 // <prefix>/share/glimmer/<name>; a copied folder may hold <name> next to the executable), else the source tree
 // the build was configured from.

@@ -14,4 +14,7 @@ std::filesystem::path defaultShaderDir();
 // The content folder (scene files): $GLIMMER_CONTENT_DIR, else the same places with content/.
 std::filesystem::path defaultContentDir();
 
+// How messages name a file: relative to the current folder when it lies below it, else the path as it is.
+std::string displayPath(const std::filesystem::path& path);
+
 }  // namespace glimmer

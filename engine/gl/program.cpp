@@ -11,6 +11,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+bool insideRoot(const fs::path& root, const fs::path& file) {
+    auto r = root.begin(), f = file.begin();
+    for (; r != root.end(); ++r, ++f)
+        if (f == file.end() || *r != *f) return false;
+    return true;
+}
+
+// How messages name a file: relative to the shader root inside it, else as displayPath gives it (user method files).
+std::string fileLabel(const fs::path& root, const fs::path& full) {
+    return insideRoot(root, full) ? fs::relative(full, root).string() : displayPath(full);
+}
+
 // Appends `file` (and, recursively, its includes) to `out`. Each file gets a source-string number; #line
 // directives switch between them so the driver's line numbers are the files' own.
 void appendFile(const fs::path& root, const fs::path& file, const ProgramDesc& desc, ExpandedSource& out,
@@ -44,13 +56,15 @@ void appendFile(const fs::path& root, const fs::path& file, const ProgramDesc& d
             if (match[2].matched) {
                 auto macro = desc.includeMacros.find(match[2].str());
                 if (macro == desc.includeMacros.end())
-                    throw Error(fs::relative(full, root).string() + ":" + std::to_string(lineNumber) +
+                    throw Error(fileLabel(root, full) + ":" + std::to_string(lineNumber) +
                                 ": #include " + match[2].str() + " is not defined");
                 target = macro->second;
             }
-            // Includes resolve against the shader root (the layout is flat enough that this is unambiguous).
-            fs::path relative = fs::relative(full, root);
-            appendFile(root, target, desc, out, stack, relative, lineNumber);
+            // Includes resolve against the shader root (the layout is flat enough that this is unambiguous); a
+            // file outside it (a user method) finds files beside itself first, then the root's helpers.
+            if (!insideRoot(root, full) && target.is_relative() && fs::exists(full.parent_path() / target))
+                target = full.parent_path() / target;
+            appendFile(root, target, desc, out, stack, fileLabel(root, full), lineNumber);
             out.text += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(index) + "\n";
         } else {
             out.text += line;
@@ -117,8 +131,10 @@ std::string mapDriverLog(const std::string& log, const std::vector<fs::path>& fi
     auto name = [&](const std::string& index) {
         size_t i = std::stoul(index);
         if (i >= files.size()) return std::string("<generated>");
+        fs::path canonicalRoot = fs::weakly_canonical(root);
+        if (!insideRoot(canonicalRoot, files[i])) return displayPath(files[i]);
         std::error_code ec;
-        fs::path rel = fs::relative(files[i], fs::weakly_canonical(root).parent_path(), ec);
+        fs::path rel = fs::relative(files[i], canonicalRoot.parent_path(), ec);
         return (ec || rel.empty() ? files[i] : rel).string();
     };
     while (std::getline(lines, line)) {

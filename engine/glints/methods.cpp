@@ -48,6 +48,7 @@ static GlintMethod deliot2023Method() {
         {"microfacet_roughness", GlintQuantity::AngularSize, 1.0f, 2.0f, -2.0f, false,
          "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
          "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
+    method.convergence = {{"log_density", 40.0f}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
     return method;
 }
 
@@ -68,6 +69,7 @@ static GlintMethod zirr2016Method() {
          "Sec. 4: facets per unit UV area, as its natural log"},
         {"search_cone", GlintQuantity::AngularSize, 1.0f, 1.0f, 0.0f, false,
          "Sec. 4.1: gamma is the half-angle of the cone around h (p = pi gamma^2 D(h) (h.n)): the same quantity"}};
+    method.convergence = {{"log_density", 40.0f}};
     return method;
 }
 
@@ -115,6 +117,7 @@ static GlintMethod kemppinen2025Method() {
         {"glint_anisotropy", GlintQuantity::Anisotropy, 1.0f, 1.0f, 0.0f, false, "Sec. 3.3.6: A*"},
         {"color_variation", GlintQuantity::ColorVariation, 1.0f, 1.0f, 0.0f, false,
          "Sec. 3.3.6: per-glint colours"}};
+    method.convergence = {{"density", 1e13f}};   // tests/kemppinen2025_test.cpp HighDensityConvergesToSmooth
     return method;
 }
 
@@ -163,8 +166,8 @@ static GlintMethod wang2020Method() {
     return method;
 }
 
-const std::vector<GlintMethod>& glintMethods() {
-    static const std::vector<GlintMethod> methods = {
+static std::vector<GlintMethod>& methodTable() {
+    static std::vector<GlintMethod> methods = {
         smoothMethod(),
         deliot2023Method(),
         zirr2016Method(),
@@ -172,6 +175,27 @@ const std::vector<GlintMethod>& glintMethods() {
         wang2020Method(),
     };
     return methods;
+}
+
+const std::vector<GlintMethod>& glintMethods() { return methodTable(); }
+
+std::string registerGlintMethod(GlintMethod method) {
+    GlintMethod* sameFile = nullptr;
+    for (GlintMethod& existing : methodTable()) {
+        if (existing.isUserMethod() && existing.sourceFile == method.sourceFile) sameFile = &existing;
+        else if (existing.id == method.id && !existing.isUserMethod())
+            throw Error(method.sourceFile.string() + ": method name '" + method.id + "' is a built-in method's");
+        else if (existing.id == method.id)
+            throw Error(method.sourceFile.string() + ": method name '" + method.id + "' is already used by " +
+                        existing.sourceFile.string());
+    }
+    if (!sameFile) {
+        methodTable().push_back(std::move(method));
+        return "";
+    }
+    std::string previous = sameFile->id;
+    *sameFile = std::move(method);
+    return previous;
 }
 
 const GlintMethod& findGlintMethod(const std::string& id) {

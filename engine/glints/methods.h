@@ -1,7 +1,9 @@
 // The table of glint methods. Each entry names its shader file (shaders/glints/<file>), the define that selects
 // it in the lighting program, its parameters (defaults, ranges, meanings) and the paper it implements.
-// Adding a method: write shaders/glints/<name>.glsl with the interface documented in shaders/glints/README.md,
-// add a function returning its GlintMethod below and list it in glintMethods().
+// Adding a built-in method: write shaders/glints/<name>.glsl with the interface documented in
+// shaders/glints/README.md, add a function returning its GlintMethod below and list it in glintMethods().
+// User methods (--method-file, glints/user_methods.h) are entries of the same table read from one GLSL file's
+// header block at run time: everything that lists or finds methods sees them like the built-ins.
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -79,11 +81,25 @@ struct GlintMethod {
     // material with the largest value of this parameter (wang2020: particles, so that every material thins the
     // densest material's tree), or the first glinty material when empty. Shaders read those values as PS_<NAME>.
     std::string sharedDataMaterial;
+    // Parameter values at which the method must render like `smooth` ("very high density"): the convergence
+    // rule of check-method (glints/method_checks.h). Empty: the method declares none.
+    ParamValues convergence;
+    // User methods only: the GLSL file the entry was read from (canonical; shaderFile is the same path) and the
+    // built-in whose GPU resources it borrows ("" = none). Built-ins leave both empty.
+    std::filesystem::path sourceFile;
+    std::string resourcesFrom;
+    bool isUserMethod() const { return !sourceFile.empty(); }
 };
 
+// The built-ins, then the user methods in the order they were registered. References stay valid only until the
+// next registerGlintMethod (look methods up again after loading a method file).
 const std::vector<GlintMethod>& glintMethods();
 // Throws UsageError("--method: unknown method 'x' (known: ...)").
 const GlintMethod& findGlintMethod(const std::string& id);
+// Adds a user method, or replaces the entry read from the same file (hot reload of its header, which may rename
+// it). Returns the id the file's entry had before ("" for a new file). Throws Error when the id is a built-in's
+// or another file's.
+std::string registerGlintMethod(GlintMethod method);
 
 // GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter. With perMaterial
 // (the lighting pass), P_<NAME> reads the row of the material g_glintMaterial in a storage buffer

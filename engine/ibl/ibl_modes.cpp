@@ -10,7 +10,7 @@ namespace glimmer {
 
 // The split-sum baseline of the environment issue (shaders/common/ibl.glsl): one deterministic evaluation.
 static IblMode prefilteredMode() {
-    return {"prefiltered",
+    IblMode mode{"prefiltered",
             "Prefiltered environment (split sum, SH irradiance)",
             "IBL_MODE_PREFILTERED",
             "ibl/prefiltered.glsl",
@@ -19,12 +19,14 @@ static IblMode prefilteredMode() {
             false,
             {},
             nullptr};
+    mode.readsProbes = true;   // local reflections (render/reflection_probes.h)
+    return mode;
 }
 
 // Wang, Deng & Holzschuch 2020, Sec. 4.2: the prefiltered 4D glint table combined with the glint method's per-pixel
 // particle count (shaders/ibl/wang2020.glsl; prefilter pass engine/ibl/wang2020_environment.cpp).
 static IblMode wang2020Mode() {
-    return {"wang2020",
+    IblMode mode{"wang2020",
             "Wang et al. 2020 prefiltered glint table (needs --method wang2020)",
             "IBL_MODE_WANG2020",
             "ibl/wang2020.glsl",
@@ -37,6 +39,8 @@ static IblMode wang2020Mode() {
             false,
             {"wang2020"},
             createWang2020EnvironmentResources};
+    mode.readsProbes = true;
+    return mode;
 }
 
 // Monte Carlo modes of issue 5: `seed` offsets the random streams so that two renders are independent (a
@@ -48,7 +52,7 @@ static ParamSpec seedParam() {
 
 // Smooth-NDF importance sampling (shaders/ibl/ndf_is.glsl): the comparison baseline, any glint method.
 static IblMode ndfIsMode() {
-    return {"ndf-is",
+    IblMode mode{"ndf-is",
             "Monte Carlo, half vectors sampled from the smooth NDF",
             "IBL_MODE_NDF_IS",
             "ibl/ndf_is.glsl",
@@ -57,11 +61,13 @@ static IblMode ndfIsMode() {
             true,
             {},
             nullptr};
+    mode.readsProbes = true;
+    return mode;
 }
 
 // Glinty-NDF importance sampling (shaders/ibl/glint_is.glsl): Algorithm 2 of Kemppinen et al. 2025.
 static IblMode glintIsMode() {
-    return {"glint-is",
+    IblMode mode{"glint-is",
             "Monte Carlo, half vectors sampled from the filtered glinty NDF",
             "IBL_MODE_GLINT_IS",
             "ibl/glint_is.glsl",
@@ -70,6 +76,8 @@ static IblMode glintIsMode() {
             true,
             {"kemppinen2025"},
             nullptr};
+    mode.readsProbes = true;
+    return mode;
 }
 
 // Issue 7: "Real-time Rendering of Glossy Materials with Regular Sampling" (CGI 2014) and its two comparisons,

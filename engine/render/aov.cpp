@@ -18,6 +18,7 @@ const std::vector<AovInfo>& aovTable() {
         {"tangent", 9, "world-space tangent"},
         {"material", 10, "R alpha, G metallic, B material id"},
         {"extra", 11, "method-specific debug channel (see the method's documentation)"},
+        {"ao", 13, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},
         {"glintscale", 11, "wang2020: scale used per pixel, red micro, green meso, blue macro (= its extra view)"},
     };
     return table;

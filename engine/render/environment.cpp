@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "core/clock.h"
@@ -11,15 +13,16 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "render/cube_texels.h"
+#include "render/environment_cache.h"
 
 namespace glimmer {
 
 namespace {
 
-// Samples per texel of prefiltered level k: 32 << k. Rough levels have few texels but wide lobes, where the
-// box-filtered source mips are coarsest, so they get the most samples; measured against CPU quadrature in
-// tests/environment_test.cpp (a flat 128 left 3.9% errors at alpha = 1 and cost more in total).
-int prefilterSamples(int level) { return 32 << level; }
+// Samples per texel of prefiltered level k: 32 << k (CubePrefilter::samples). Rough levels have few texels but
+// wide lobes, where the box-filtered source mips are coarsest, so they get the most samples; measured against CPU
+// quadrature in tests/environment_test.cpp (a flat 128 left 3.9% errors at alpha = 1 and cost more in total).
+int prefilterSamples(int level) { return CubePrefilter::samples(level); }
 constexpr int kBrdfLutSamples = 4096;    // per table entry and NDF (512 left 0.026 errors at n.v < 0.1)
 constexpr int kLocalSize = 8;            // compute work-group edge (shaders/env/*.comp)
 
@@ -37,6 +40,42 @@ std::vector<float>& cachedBrdfLut() {
     static std::vector<float> table;
     return table;
 }
+
+gl::Texture createSourceCube() {
+    GLuint cube = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &cube);
+    glTextureStorage2D(cube, levelCount(Environment::kFaceSize), GL_RGBA32F, Environment::kFaceSize,
+                       Environment::kFaceSize);
+    glTextureParameteri(cube, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(cube, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(cube, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(cube, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(cube, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return gl::Texture(cube);
+}
+
+gl::Texture createSpecularArray() {
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
+    glTextureStorage3D(array, Environment::kPrefilterLevels, GL_RGBA32F, Environment::kFaceSize,
+                       Environment::kFaceSize, 6 * 2);
+    glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return gl::Texture(array);
+}
+
+gl::Texture createBrdfLut() {
+    gl::Texture lut = gl::createTexture2D(GL_RGBA32F, Environment::kBrdfLutSize, Environment::kBrdfLutSize, 1);
+    glTextureParameteri(lut.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(lut.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return lut;
+}
+
+// The compute shaders that build the maps (their expanded sources are part of the cache key).
+constexpr const char* kEnvironmentShaders[] = {"env/equirect_to_cube.comp", "env/procedural_sky.comp",
+                                               "env/prefilter.comp", "env/brdf_lut.comp"};
 
 void finishAndTime(double& slot, Stopwatch& clock) {
     glFinish();
@@ -135,14 +174,29 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
         if (!std::filesystem::is_regular_file(spec.path, ec))
             throw Error(flag + ": " + spec.path.string() + ": file not found");
     }
+    Stopwatch total;
+    std::optional<EnvironmentCache> cache;
+    if (std::string parameters = cacheParameters(spec, sun); !parameters.empty()) {
+        cache.emplace(cache::defaultCacheDir(), parameters);
+        if (loadFromCache(*cache)) {
+            timings_ = {};
+            timings_.loadMs = timings_.totalMs = total.elapsedMs();
+            timings_.cacheHit = true;
+            active_ = spec;
+            activeKey_ = key.str();
+            enabled_ = true;
+            log::info("environment ", text.empty() ? std::string("procedural") : text, ": read from the cache (",
+                      cache->fileName(), ") in ", timings_.totalMs, " ms");
+            return;
+        }
+    }
     if (!equirectProgram_) {
         equirectProgram_ = computeProgram(shaderRoot_, "env/equirect_to_cube", "env/equirect_to_cube.comp");
         skyProgram_ = computeProgram(shaderRoot_, "env/procedural_sky", "env/procedural_sky.comp");
-        prefilterProgram_ = computeProgram(shaderRoot_, "env/prefilter", "env/prefilter.comp");
+        prefilter_ = std::make_unique<CubePrefilter>(shaderRoot_);
         lutProgram_ = computeProgram(shaderRoot_, "env/brdf_lut", "env/brdf_lut.comp");
     }
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    Stopwatch total;
     double lutMs = 0.0;
     if (!brdfLut_) {
         Stopwatch clock;
@@ -157,6 +211,11 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
         throw Error(flag + ": " + message);
     }
     timings_.brdfLutMs = lutMs;
+    if (cache) {
+        Stopwatch clock;
+        timings_.cacheStored = cache->store({sourceCube_.id(), specular_.id(), brdfLut_.id()}, sh_);
+        timings_.cacheStoreMs = clock.elapsedMs();
+    }
     timings_.totalMs = total.elapsedMs();
     active_ = spec;
     activeKey_ = key.str();
@@ -167,10 +226,65 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
               timings_.brdfLutMs, " ms, total ", timings_.totalMs, " ms");
 }
 
+std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunDescription& sun) const {
+    if (!EnvironmentCache::enabledByEnvironment()) return "";
+    char text[512];
+    std::string what;
+    switch (spec.kind) {
+        case EnvironmentSpec::Kind::File: {
+            std::string hash = cache::fileContentHash(spec.path);
+            if (hash.empty()) return "";
+            what = "file " + hash;
+            break;
+        }
+        case EnvironmentSpec::Kind::Constant:
+            std::snprintf(text, sizeof text, "constant %.9g %.9g %.9g", spec.constant.x, spec.constant.y,
+                          spec.constant.z);
+            what = text;
+            break;
+        case EnvironmentSpec::Kind::Procedural:
+            std::snprintf(text, sizeof text, "procedural analytic=%d direction=%.9g,%.9g,%.9g irradiance=%.9g,%.9g,%.9g",
+                          int(sun.analytic), sun.direction.x, sun.direction.y, sun.direction.z, sun.irradiance.x,
+                          sun.irradiance.y, sun.irradiance.z);
+            what = text;
+            break;
+        case EnvironmentSpec::Kind::None: return "";
+    }
+    std::string shaders;
+    for (const char* file : kEnvironmentShaders)
+        shaders += gl::expandShaderSource(shaderRoot_, file, {file, {{GL_COMPUTE_SHADER, file}}}).text;
+    std::string samples;
+    for (int level = 1; level < kPrefilterLevels; ++level) samples += std::to_string(prefilterSamples(level)) + ",";
+    std::snprintf(text, sizeof text,
+                  " | face %d, levels %d, prefilter samples %s brdf table %d x %d samples, irradiance face %d | "
+                  "shaders %s",
+                  kFaceSize, kPrefilterLevels, samples.c_str(), kBrdfLutSize, kBrdfLutSamples, kIrradianceFace,
+                  cache::contentHash(shaders).c_str());
+    return what + text;
+}
+
+bool Environment::loadFromCache(const EnvironmentCache& cache) {
+    // Into new textures: a miss or a bad file leaves the current environment as it was.
+    gl::Texture source = createSourceCube(), specular = createSpecularArray(), lut = createBrdfLut();
+    std::array<glm::vec3, 9> sh{};
+    if (!cache.load({source.id(), specular.id(), lut.id()}, sh)) return false;
+    sourceCube_ = std::move(source);
+    specular_ = std::move(specular);
+    sh_ = sh;
+    if (!brdfLut_) {
+        brdfLut_ = std::move(lut);
+        std::vector<float>& cached = cachedBrdfLut();
+        if (cached.empty()) {
+            cached.resize(size_t(kBrdfLutSize) * kBrdfLutSize * 4);
+            glGetTextureImage(brdfLut_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(cached.size() * sizeof(float)),
+                              cached.data());
+        }
+    }
+    return true;
+}
+
 void Environment::buildBrdfLut() {
-    brdfLut_ = gl::createTexture2D(GL_RGBA32F, kBrdfLutSize, kBrdfLutSize, 1);
-    glTextureParameteri(brdfLut_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(brdfLut_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    brdfLut_ = createBrdfLut();
     std::vector<float>& cached = cachedBrdfLut();
     if (!cached.empty()) {
         glTextureSubImage2D(brdfLut_.id(), 0, 0, 0, kBrdfLutSize, kBrdfLutSize, GL_RGBA, GL_FLOAT, cached.data());
@@ -230,15 +344,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
         finishAndTime(timings_.loadMs, clock);
     }
 
-    GLuint cube = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &cube);
-    sourceCube_ = gl::Texture(cube);
-    glTextureStorage2D(cube, levelCount(kFaceSize), GL_RGBA32F, kFaceSize, kFaceSize);
-    glTextureParameteri(cube, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(cube, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(cube, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(cube, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(cube, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    sourceCube_ = createSourceCube();
+    GLuint cube = sourceCube_.id();
 
     switch (spec.kind) {
         case EnvironmentSpec::Kind::File:
@@ -257,14 +364,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
         default: fillProceduralSky(sun, true); break;
     }
 
-    GLuint array = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    specular_ = gl::Texture(array);
-    glTextureStorage3D(array, kPrefilterLevels, GL_RGBA32F, kFaceSize, kFaceSize, 6 * 2);
-    glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    specular_ = createSpecularArray();
+    GLuint array = specular_.id();
     // Level 0 of both NDF layers is the unfiltered source: the background and mirror reflections.
     for (int layer = 0; layer < 2; ++layer)
         glCopyImageSubData(cube, GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, array, GL_TEXTURE_CUBE_MAP_ARRAY, 0, 0, 0, 6 * layer,
@@ -282,22 +383,7 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
 }
 
 void Environment::prefilter() {
-    prefilterProgram_.use();
-    glBindTextureUnit(0, sourceCube_.id());
-    glUniform1i(4, kFaceSize);
-    glUniform1f(5, float(levelCount(kFaceSize) - 1));
-    for (int level = 1; level < kPrefilterLevels; ++level) {
-        int size = kFaceSize >> level;
-        glBindImageTexture(0, specular_.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glUniform1i(0, size);
-        glUniform1f(1, levelAlpha(level));
-        glUniform1i(3, prefilterSamples(level));
-        for (int ndf = 0; ndf < 2; ++ndf) {
-            glUniform1i(2, ndf);
-            glDispatchCompute(groups(size), groups(size), 6);
-        }
-    }
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    prefilter_->run(sourceCube_.id(), kFaceSize, specular_.id(), kPrefilterLevels, 0, 0x3u);
 }
 
 void Environment::projectIrradiance() {
@@ -357,6 +443,10 @@ nlohmann::json Environment::stats() const {
                               {"mips", timings_.mipsMs},           {"prefilter", timings_.prefilterMs},
                               {"irradiance_sh", timings_.irradianceMs}, {"brdf_lut", timings_.brdfLutMs},
                               {"total", timings_.totalMs}};
+        j["cache"] = {{"enabled", EnvironmentCache::enabledByEnvironment()},
+                      {"hit", timings_.cacheHit},
+                      {"stored", timings_.cacheStored},
+                      {"store_ms", timings_.cacheStoreMs}};
     }
     return j;
 }

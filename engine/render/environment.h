@@ -13,13 +13,17 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/cube_prefilter.h"
 #include "scene/scene.h"
 
 namespace glimmer {
+
+class EnvironmentCache;
 
 // What `--env` / Scene::environment name: "" or "procedural" (default sky), "none", "constant:R,G,B" (or
 // "constant:V"), or an image path.
@@ -46,6 +50,9 @@ SunDescription sunFromScene(const Scene& scene);
 // Wall-clock milliseconds of each precompute step (each closed by glFinish).
 struct EnvironmentTimings {
     double loadMs = 0, convertMs = 0, mipsMs = 0, prefilterMs = 0, irradianceMs = 0, brdfLutMs = 0, totalMs = 0;
+    bool cacheHit = false;      // read from the disk cache (render/environment_cache.h): loadMs is that read
+    bool cacheStored = false;   // built and written to the disk cache
+    double cacheStoreMs = 0;
 };
 
 // The uniform block of shaders/common/ibl.glsl (std140, binding kEnvironmentBinding).
@@ -86,12 +93,12 @@ public:
     GLuint specularCubeArray() const { return specular_.id(); }
     GLuint brdfLut() const { return brdfLut_.id(); }
     const std::array<glm::vec3, 9>& irradianceSh() const { return sh_; }
-    static float levelAlpha(int level) {
-        float r = float(level) / float(kPrefilterLevels - 1);
-        return r * r;
-    }
+    static float levelAlpha(int level) { return CubePrefilter::levelAlpha(level, kPrefilterLevels); }
 
 private:
+    // The disk cache key's parameters for `spec` ("" = do not cache: turned off, `none`, unreadable file).
+    std::string cacheParameters(const EnvironmentSpec& spec, const SunDescription& sun) const;
+    bool loadFromCache(const EnvironmentCache& cache);
     void buildBrdfLut();
     void buildMaps(const EnvironmentSpec& spec, const SunDescription& sun);
     void fillProceduralSky(const SunDescription& sun, bool drawSun);
@@ -99,7 +106,8 @@ private:
     void projectIrradiance();
 
     std::filesystem::path shaderRoot_;
-    gl::Program equirectProgram_, skyProgram_, prefilterProgram_, lutProgram_;
+    gl::Program equirectProgram_, skyProgram_, lutProgram_;
+    std::unique_ptr<CubePrefilter> prefilter_;   // shared with the reflection probes
     gl::Texture sourceCube_, specular_, brdfLut_;
     gl::Buffer uniforms_;
     std::array<glm::vec3, 9> sh_{};

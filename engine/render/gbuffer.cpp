@@ -17,14 +17,16 @@ static gl::Framebuffer createFramebuffer(const char* label) {
     return gl::Framebuffer(id);
 }
 
-void FrameTargets::resize(int width, int height, bool glintPost) {
+void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart) {
     if (width == width_ && height == height_) {
         if (glintPost && !glintEnvironment_) allocateGlintPost();
+        if (glintPart && !glintPart_) allocateGlintPart();
         return;
     }
     width_ = width;
     height_ = height;
     glintEnvironment_ = {};  // reallocated below at the new size when needed
+    glintPart_ = {};
     static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
     gbufferFbo_ = createFramebuffer("gbuffer");
     GLenum drawBuffers[kGBufferColorCount];
@@ -48,6 +50,7 @@ void FrameTargets::resize(int width, int height, bool glintPost) {
     glNamedFramebufferTexture(displayFbo_.id(), GL_COLOR_ATTACHMENT0, display_.id(), 0);
     checkComplete(displayFbo_.id(), "display");
     if (glintPost) allocateGlintPost();
+    if (glintPart) allocateGlintPart();
 }
 
 void FrameTargets::allocateGlintPost() {
@@ -61,6 +64,29 @@ void FrameTargets::allocateGlintPost() {
     const GLenum drawBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(lightingGlintFbo_.id(), 3, drawBuffers);
     checkComplete(lightingGlintFbo_.id(), "lighting+glints");
+    attachGlintPart();
+}
+
+void FrameTargets::allocateGlintPart() {
+    // RGBA32F for the same reason as the glint targets above.
+    glintPart_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
+    lightingGlintPartFbo_ = createFramebuffer("lighting+glint part");
+    glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
+    glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT3, glintPart_.id(), 0);
+    const GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(lightingGlintPartFbo_.id(), 4, drawBuffers);
+    checkComplete(lightingGlintPartFbo_.id(), "lighting+glint part");
+    attachGlintPart();
+}
+
+void FrameTargets::attachGlintPart() {
+    if (!glintPart_ || !lightingGlintFbo_) return;
+    // Methods with a glint post pass add their glints after the lighting pass: their glint part is zero.
+    glNamedFramebufferTexture(lightingGlintFbo_.id(), GL_COLOR_ATTACHMENT3, glintPart_.id(), 0);
+    const GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(lightingGlintFbo_.id(), 4, drawBuffers);
+    checkComplete(lightingGlintFbo_.id(), "lighting+glints+glint part");
 }
 
 }  // namespace glimmer

@@ -8,8 +8,9 @@ class FrameTargets {
 public:
     static constexpr int kGBufferColorCount = 5;
 
-    // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets (below).
-    void resize(int width, int height, bool glintPost = false);
+    // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets, and
+    // `glintPart` the glint part target of TAA (below).
+    void resize(int width, int height, bool glintPost = false, bool glintPart = false);
     int width() const { return width_; }
     int height() const { return height_; }
 
@@ -29,6 +30,12 @@ public:
     GLuint glintEnvironmentTexture() const { return glintEnvironment_.id(); }
     GLuint glintLightsTexture() const { return glintLights_.id(); }
 
+    // TAA (docs/image.md): the part of the lighting pass's radiance that is the lights' glints (location 3 of
+    // lighting.frag), which the TAA pass keeps out of its neighbourhood clipping. When allocated it is attachment
+    // 3 of lightingGlintPartFramebuffer() (the HDR target plus it) and of lightingGlintFramebuffer().
+    GLuint lightingGlintPartFramebuffer() const { return lightingGlintPartFbo_.id(); }
+    GLuint glintPartTexture() const { return glintPart_.id(); }
+
 private:
     int width_ = 0, height_ = 0;
     gl::Texture gbuffer_[kGBufferColorCount];
@@ -37,6 +44,10 @@ private:
     void allocateGlintPost();
     gl::Texture glintEnvironment_, glintLights_;
     gl::Framebuffer lightingGlintFbo_;
+    void allocateGlintPart();
+    void attachGlintPart();   // to lightingGlintFbo_, when both exist
+    gl::Texture glintPart_;
+    gl::Framebuffer lightingGlintPartFbo_;
 };
 
 }  // namespace glimmer

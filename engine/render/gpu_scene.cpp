@@ -1,4 +1,6 @@
 #include "render/gpu_scene.h"
+
+#include <atomic>
 #include "common/bindings.glsl"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -17,22 +19,42 @@ struct Vertex {
     glm::vec3 normal;
     glm::vec4 tangent;
     glm::vec2 uv;
+    glm::vec4 color;   // COLOR_0, white when absent
 };
+
+GLint glWrap(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case TextureWrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        default: return GL_REPEAT;
+    }
+}
+
+bool isEmissive(const Material& m) { return m.emissive.x > 0.0f || m.emissive.y > 0.0f || m.emissive.z > 0.0f; }
 
 gl::Texture uploadTexture(const TextureData& data) {
     int levels = 1 + int(std::floor(std::log2(float(std::max(data.width, data.height)))));
     gl::Texture texture = gl::createTexture2D(data.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, data.width, data.height, levels);
     glTextureSubImage2D(texture.id(), 0, 0, 0, data.width, data.height, GL_RGBA, GL_UNSIGNED_BYTE, data.rgba.data());
     glGenerateTextureMipmap(texture.id());
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-    if (GLAD_GL_EXT_texture_filter_anisotropic) glTextureParameterf(texture.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
+    // The glTF sampler (3.8.3): wrap modes per axis; without mipmaps the level 0 alone is read.
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, glWrap(data.sampler.wrapS));
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, glWrap(data.sampler.wrapT));
+    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, data.sampler.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, data.sampler.nearestMag ? GL_NEAREST : GL_LINEAR);
+    // Anisotropic filtering for mipmapped linear textures only: it has no meaning without mip levels, and llvmpipe
+    // (Mesa 22.3.6, LLVM 15) crashed inside LLVM compiling the G-buffer shader for a NEAREST texture with 16x
+    // anisotropy (tests/data/texture_transform.gltf, ScenesGltf.TextureTransformChangesTheSampledTexels).
+    if (GLAD_GL_EXT_texture_filter_anisotropic && data.sampler.mipmaps && !data.sampler.nearestMag)
+        glTextureParameterf(texture.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
     return texture;
 }
 
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene) {
+    static std::atomic<uint64_t> nextSerial{1};
+    serial_ = nextSerial++;
     for (const MeshData& mesh : scene.meshes) {
         std::vector<Vertex> vertices(mesh.positions.size());
         for (size_t i = 0; i < vertices.size(); ++i) {
@@ -40,6 +62,7 @@ GpuScene::GpuScene(const Scene& scene) {
             vertices[i].normal = i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0, 1, 0);
             vertices[i].tangent = i < mesh.tangents.size() ? mesh.tangents[i] : glm::vec4(1, 0, 0, 1);
             vertices[i].uv = i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f);
+            vertices[i].color = i < mesh.colors.size() ? mesh.colors[i] : glm::vec4(1.0f);
         }
         MeshBuffers buffers;
         ChunkedIndices chunked = buildMeshChunks(mesh.indices, mesh.positions);
@@ -54,7 +77,7 @@ GpuScene::GpuScene(const Scene& scene) {
         glVertexArrayElementBuffer(vao, buffers.indices.id());
         const struct { GLuint location; GLint size; GLuint offset; } attributes[] = {
             {0, 3, offsetof(Vertex, position)}, {1, 3, offsetof(Vertex, normal)},
-            {2, 4, offsetof(Vertex, tangent)}, {3, 2, offsetof(Vertex, uv)}};
+            {2, 4, offsetof(Vertex, tangent)}, {3, 2, offsetof(Vertex, uv)}, {4, 4, offsetof(Vertex, color)}};
         for (const auto& a : attributes) {
             glEnableVertexArrayAttrib(vao, a.location);
             glVertexArrayAttribFormat(vao, a.location, a.size, GL_FLOAT, GL_FALSE, a.offset);
@@ -64,6 +87,11 @@ GpuScene::GpuScene(const Scene& scene) {
         meshes_.push_back(std::move(buffers));
     }
     for (const TextureData& texture : scene.textures) textures_.push_back(uploadTexture(texture));
+    for (const Instance& instance : scene.instances) {
+        const Material& m = scene.materials[instance.material];
+        hasBlended_ = hasBlended_ || m.blend;
+        hasOpaqueEmissive_ = hasOpaqueEmissive_ || (!m.blend && isEmissive(m));
+    }
     updateMaterialsAndLights(scene);
 }
 
@@ -88,11 +116,48 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
 }
 
-void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection) const {
+void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward) const {
+    const Material& material = scene.materials[instance.material];
+    // A transform with negative determinant mirrors the mesh, which turns counter-clockwise front faces clockwise
+    // on screen (glTF 3.5.2 instantiation). The front face is set for two-sided materials too, so that
+    // gl_FrontFacing (which flips their normals) stays right on mirrored nodes.
+    glFrontFace(glm::determinant(glm::mat3(instance.transform)) < 0.0f ? GL_CW : GL_CCW);
+    if (material.doubleSided) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    }
+    glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(instance.transform));
+    glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
+    glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniform1i(2, int(instance.material));
+    const int slots[] = {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture,
+                         material.occlusionTexture, material.glintMaskTexture, material.emissiveTexture};
+    int mask = 0;
+    static_assert(UNIT_MATERIAL_BASE_COLOR == 0 && UNIT_MATERIAL_GLINT_MASK == 4 && UNIT_MATERIAL_EMISSIVE == 5,
+                  "slots[] order = units");
+    const int lastUnit = forward ? UNIT_MATERIAL_EMISSIVE : UNIT_MATERIAL_GLINT_MASK;
+    for (int unit = UNIT_MATERIAL_BASE_COLOR; unit <= lastUnit; ++unit) {
+        int index = slots[unit];
+        if (index >= 0 && index < int(textures_.size())) {
+            glBindTextureUnit(unit, textures_[index].id());
+            mask |= 1 << unit;
+        }
+    }
+    glUniform1i(3, mask);
+    glUniformMatrix3fv(4, 1, GL_FALSE, glm::value_ptr(material.uvTransform));
+    if (forward) glUniform3fv(5, 1, glm::value_ptr(material.emissive));
+}
+
+void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection, DrawSelection selection) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
-    drawStats_ = {};
+    DrawStats stats;   // kept for --stats from the G-buffer's draw only
     for (const Instance& instance : scene.instances) {
+        const Material& material = scene.materials[instance.material];
+        if (material.blend) continue;   // drawBlendedBackToFront
+        if (selection == DrawSelection::OpaqueEmissive && !isEmissive(material)) continue;
         const MeshBuffers& mesh = meshes_[instance.mesh];
         // Visible chunks; consecutive ones merge into one range (they are adjacent in the index buffer).
         const glm::mat4 clipFromMesh = viewProjection * instance.transform;
@@ -100,11 +165,11 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
         drawOffsets_.clear();
         uint32_t rangeEnd = ~0u;
         for (const MeshChunk& chunk : mesh.chunks) {
-            drawStats_.chunksTotal += 1;
-            drawStats_.trianglesTotal += chunk.indexCount / 3;
+            stats.chunksTotal += 1;
+            stats.trianglesTotal += chunk.indexCount / 3;
             if (boxOutsideFrustum(clipFromMesh, chunk.boundsMin, chunk.boundsMax)) continue;
-            drawStats_.chunksDrawn += 1;
-            drawStats_.trianglesDrawn += chunk.indexCount / 3;
+            stats.chunksDrawn += 1;
+            stats.trianglesDrawn += chunk.indexCount / 3;
             if (chunk.firstIndex == rangeEnd) {
                 drawCounts_.back() += GLsizei(chunk.indexCount);
             } else {
@@ -114,36 +179,44 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
             rangeEnd = chunk.firstIndex + chunk.indexCount;
         }
         if (drawCounts_.empty()) continue;
-        const Material& material = scene.materials[instance.material];
-        if (material.doubleSided) {
-            glDisable(GL_CULL_FACE);
-        } else {
-            // A transform with negative determinant mirrors the mesh, which turns counter-clockwise front faces
-            // clockwise on screen.
-            glEnable(GL_CULL_FACE);
-            glCullFace(GL_BACK);
-            glFrontFace(glm::determinant(glm::mat3(instance.transform)) < 0.0f ? GL_CW : GL_CCW);
-        }
-        glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(instance.transform));
-        glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
-        glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-        glUniform1i(2, int(instance.material));
-        const int slots[] = {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture,
-                             material.occlusionTexture, material.glintMaskTexture};
-        int mask = 0;
-        static_assert(UNIT_MATERIAL_BASE_COLOR == 0 && UNIT_MATERIAL_GLINT_MASK == 4, "slots[] order = units");
-        for (int unit = UNIT_MATERIAL_BASE_COLOR; unit <= UNIT_MATERIAL_GLINT_MASK; ++unit) {
-            int index = slots[unit];
-            if (index >= 0 && index < int(textures_.size())) {
-                glBindTextureUnit(unit, textures_[index].id());
-                mask |= 1 << unit;
-            }
-        }
-        glUniform1i(3, mask);
-        glUniformMatrix3fv(4, 1, GL_FALSE, glm::value_ptr(material.uvTransform));
+        bindInstance(scene, instance, selection == DrawSelection::OpaqueEmissive);
         glBindVertexArray(mesh.vao.id());
         glMultiDrawElements(GL_TRIANGLES, drawCounts_.data(), GL_UNSIGNED_INT, drawOffsets_.data(),
                             GLsizei(drawCounts_.size()));
+    }
+    if (selection == DrawSelection::Opaque) drawStats_ = stats;
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+}
+
+void GpuScene::drawBlendedBackToFront(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& eye) const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
+    struct Draw { float distance2; uint32_t instance; const MeshChunk* chunk; };
+    std::vector<Draw> draws;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        if (!scene.materials[instance.material].blend) continue;
+        const glm::mat4 clipFromMesh = viewProjection * instance.transform;
+        for (const MeshChunk& chunk : meshes_[instance.mesh].chunks) {
+            if (boxOutsideFrustum(clipFromMesh, chunk.boundsMin, chunk.boundsMax)) continue;
+            glm::vec3 centre = glm::vec3(instance.transform * glm::vec4(0.5f * (chunk.boundsMin + chunk.boundsMax), 1.0f));
+            glm::vec3 d = centre - eye;
+            draws.push_back({glm::dot(d, d), i, &chunk});
+        }
+    }
+    // Farthest first; ties keep the file's order (stable), so coplanar layers draw deterministically.
+    std::stable_sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) { return a.distance2 > b.distance2; });
+    uint32_t bound = ~0u;
+    for (const Draw& draw : draws) {
+        const Instance& instance = scene.instances[draw.instance];
+        if (draw.instance != bound) {
+            bindInstance(scene, instance, true);
+            glBindVertexArray(meshes_[instance.mesh].vao.id());
+            bound = draw.instance;
+        }
+        glDrawElements(GL_TRIANGLES, GLsizei(draw.chunk->indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(size_t(draw.chunk->firstIndex) * sizeof(uint32_t)));
     }
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);

@@ -12,6 +12,11 @@
 
 namespace glimmer {
 
+// Which instances a geometry pass draws: the G-buffer takes every material that is not blended; the emissive pass
+// the non-blended emissive ones (again, depth-tested against the G-buffer's depth); blended materials are drawn
+// by drawBlendedBackToFront only.
+enum class DrawSelection { Opaque, OpaqueEmissive };
+
 class GpuScene {
 public:
     explicit GpuScene(const Scene& scene);
@@ -21,8 +26,17 @@ public:
     // Draws every instance with the bound G-buffer program (sets per-draw uniforms at locations 0-4): the chunks
     // whose bounds intersect the frustum of `viewProjection`, back faces culled on single-sided materials (the
     // winding flipped for mirroring transforms). Sets GL_CULL_FACE / glFrontFace per draw and leaves culling off.
-    void drawInstances(const Scene& scene, const glm::mat4& viewProjection) const;
+    void drawInstances(const Scene& scene, const glm::mat4& viewProjection,
+                       DrawSelection selection = DrawSelection::Opaque) const;
+    // Draws the chunks of blended-material instances that intersect the frustum one by one, sorted back to front
+    // by the distance from `eye` to each chunk's world-space bounding-box centre (glTF 3.9.4 BLEND), with the same
+    // per-draw uniforms and cull state as drawInstances plus the emission uniform (location 5).
+    void drawBlendedBackToFront(const Scene& scene, const glm::mat4& viewProjection, const glm::vec3& eye) const;
+    bool hasBlended() const { return hasBlended_; }
+    bool hasOpaqueEmissive() const { return hasOpaqueEmissive_; }
     int lightCount() const { return lightCount_; }
+    // Unique per GpuScene built in this process: geometry never changes under one serial (baked data keys on it).
+    uint64_t serial() const { return serial_; }
 
     struct DrawStats {
         size_t chunksTotal = 0, chunksDrawn = 0;
@@ -32,6 +46,9 @@ public:
     const DrawStats& lastDrawStats() const { return drawStats_; }
 
 private:
+    // Binds the instance's uniforms (locations 0-4; `forward` adds the emission at 5 and the emissive texture),
+    // textures and cull / front-face state.
+    void bindInstance(const Scene& scene, const Instance& instance, bool forward) const;
     struct MeshBuffers {
         gl::VertexArray vao;
         gl::Buffer vertices, indices;
@@ -42,6 +59,8 @@ private:
     std::vector<gl::Texture> textures_;
     gl::Buffer materials_, lights_;
     int lightCount_ = 0;
+    bool hasBlended_ = false, hasOpaqueEmissive_ = false;
+    uint64_t serial_ = 0;
     mutable DrawStats drawStats_;
     mutable std::vector<GLsizei> drawCounts_;       // per-draw scratch for glMultiDrawElements
     mutable std::vector<const void*> drawOffsets_;

@@ -1,5 +1,6 @@
 #include "render/offscreen.h"
 
+#include <array>
 #include <ctime>
 
 #include "core/clock.h"
@@ -7,6 +8,7 @@
 #include "core/log.h"
 #include "glints/methods.h"
 #include "render/aov.h"
+#include "render/image/supersample.h"
 #include "scene/scene_loader.h"
 
 namespace glimmer {
@@ -41,6 +43,9 @@ OffscreenSession::~OffscreenSession() {
 }
 
 RenderResult OffscreenSession::render(const RenderRequest& request) {
+    // aa=ssaa: the same render at N x the size, box-filtered down (a reference for the anti-aliasing measurements).
+    if (int(request.settings.common_("aa")) == 2 && request.settings.debugView == 0)
+        return image::supersampledRender(request, [this](const RenderRequest& r) { return render(r); });
     context_->makeCurrent();
     scene_ = baseScene_;
     applySceneOverrides(request.settings, scene_);
@@ -99,13 +104,24 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"method", request.settings.method},
         {"ibl", {{"mode", request.settings.ibl}, {"spp", samples}}},
         {"aov", aovName},
+        {"image", {{"aa", request.settings.common_("aa") == 1 ? "taa" : "off"},
+                   {"taa_frames", renderer_->taaFrames()},
+                   {"tonemap", std::array<const char*, 3>{"aces", "neutral", "agx"}[size_t(
+                                   request.settings.common_("tonemap"))]},
+                   {"bloom_strength", request.settings.common_("bloom.strength")},
+                   {"exposure_auto", request.settings.common_("exposure.auto") > 0.5f},
+                   {"metered_ev", request.settings.common_("exposure.auto") > 0.5f
+                                      ? renderer_->meteredExposureEv()
+                                      : 0.0f}}},
         {"passes", passes},
         {"frame_ms", frameMs.back()},
         {"frame_cpu_ms", frameCpuMs.back()},
         {"frames", frameMs.size()},
+        {"frame_ms_each", frameMs},   // frame 0 includes on-demand work (e.g. the reflection probes' capture)
         {"scene_load_ms", sceneLoadMs_},
         {"program_build_ms", programBuildMs_},
         {"environment", renderer_->environment().stats()},
+        {"probes", renderer_->probes().stats()},
         {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
                     {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
                     {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},

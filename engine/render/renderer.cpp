@@ -8,10 +8,20 @@
 #include "gl/debug.h"
 #include "glints/methods.h"
 #include "common/bindings.glsl"
+#include "render/ao/ambient_occlusion.h"
+#include "render/passes/ao_resolve_pass.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/passes/gtao_pass.h"
 #include "render/passes/lighting_pass.h"
 #include "render/passes/method_pass_host.h"
+#include "render/passes/bloom_pass.h"
+#include "render/passes/exposure_pass.h"
+#include "render/passes/taa_pass.h"
 #include "render/passes/tonemap_pass.h"
+#include "render/image/halton_jitter.h"
+#include "render/passes/emissive_pass.h"
+#include "render/passes/forward_target.h"
+#include "render/passes/transparent_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
 
@@ -27,6 +37,8 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     glCreateVertexArrays(1, &vao);
     emptyVao_ = gl::VertexArray(vao);
     capture_ = std::make_unique<RendererCapture>(shaderRoot_);
+    probes_ = std::make_unique<ReflectionProbes>(shaderRoot_);
+    ambientOcclusion_ = std::make_unique<AmbientOcclusion>();
     buildPasses();
 }
 
@@ -43,19 +55,38 @@ static std::vector<std::unique_ptr<Pass>> methodPassesOf(const GlintMethod& meth
 void Renderer::buildPasses() {
     // Build all first, then swap: a failure leaves the previous passes in place.
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
+    auto gtao = std::make_unique<GtaoPass>(shaderRoot_, *ambientOcclusion_);
+    auto aoResolve = std::make_unique<AoResolvePass>(shaderRoot_, *ambientOcclusion_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
-    auto tonemap = std::make_unique<TonemapPass>(shaderRoot_);
+    auto taa = std::make_unique<TaaPass>(shaderRoot_);
+    auto exposure = std::make_unique<ExposurePass>(shaderRoot_);
+    auto bloom = std::make_unique<BloomPass>(shaderRoot_);
+    auto tonemap = std::make_unique<TonemapPass>(shaderRoot_, *bloom, *exposure);
+    auto forwardTarget = std::make_shared<ForwardTarget>();
+    auto emissive = std::make_unique<EmissivePass>(shaderRoot_, forwardTarget);
+    auto transparent = std::make_unique<TransparentPass>(shaderRoot_, forwardTarget);
+    forwardRestorePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Restore);
+    forwardSavePass_ = std::make_unique<ForwardAccumulationPass>(forwardTarget, ForwardAccumulationPass::Mode::Save);
+    forwardTarget_ = std::move(forwardTarget);
+    emissivePass_ = std::move(emissive);
+    transparentPass_ = std::move(transparent);
     gbufferPass_ = std::move(gbuffer);
+    gtaoPass_ = std::move(gtao);
+    aoResolvePass_ = std::move(aoResolve);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
-    tonemapPass_ = std::move(tonemap);
+    tonemapPass_ = std::move(tonemap);   // before the passes it refers to are replaced
+    taaPass_ = std::move(taa);
+    exposurePass_ = std::move(exposure);
+    bloomPass_ = std::move(bloom);
     createMethodResources();
 }
 
 void Renderer::createMethodResources() {
     const GlintMethod& method = findGlintMethod(settings_.method);
     methodResources_ = method.createResources ? method.createResources() : nullptr;
+    methodResourcesFrom_ = method.resourcesFrom;
     const IblMode& ibl = findIblMode(settings_.ibl);
     iblResources_ = ibl.createResources ? ibl.createResources() : nullptr;
 }
@@ -71,9 +102,10 @@ void Renderer::reloadPrograms() {
 }
 
 std::vector<Pass*> Renderer::frame() const {
-    std::vector<Pass*> passes = {gbufferPass_.get(), lightingPass_.get()};
+    std::vector<Pass*> passes = {gbufferPass_.get(), gtaoPass_.get(), aoResolvePass_.get(), forwardRestorePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
-    passes.push_back(tonemapPass_.get());
+    passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(),
+                                 taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
     return passes;
 }
 
@@ -93,12 +125,16 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
                         program->dependencies().end();
         if (!affected) continue;
         const std::string name = program->desc().name;
+        // The lighting program's description comes from the method table again: a user method's header may have
+        // changed its parameters (P_<NAME> block) since it was built.
+        const bool lighting = program == lightingPass_->programs().front();
         try {
-            gl::Program fresh(shaderRoot_, program->desc());
+            gl::Program fresh(shaderRoot_, lighting ? lightingProgramDesc(settings_.method, settings_.ibl) : program->desc());
             *program = std::move(fresh);  // swap only after a successful link
             shaderErrors_.erase(name);
             shaderErrors_.erase("all programs");
             rebuilt.push_back(name);
+            if (lighting && findGlintMethod(settings_.method).resourcesFrom != methodResourcesFrom_) createMethodResources();
         } catch (const std::exception& e) {
             shaderErrors_[name] = e.what();
         }
@@ -108,6 +144,10 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
 
 void Renderer::setSettings(const RenderSettings& settings) {
     const bool methodChanged = settings.method != settings_.method || settings.ibl != settings_.ibl;
+    // Any edit is a cut for TAA: the history shows the old image.
+    if (methodChanged || settings.common != settings_.common || settings.methods != settings_.methods ||
+        settings.debugView != settings_.debugView || settings.iblValues != settings_.iblValues)
+        taaPass_->reset();
     if (!methodChanged) {
         settings_ = settings;
         return;
@@ -138,13 +178,8 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
 void Renderer::updateMethodData(bool measurePasses) {
     if (!methodResources_ && !iblResources_) return;
     environment_.bind(settings_.common_("env.intensity"), settings_.common_("env.rotation"));
-    bool cleared = false;
     auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
-        for (const auto& [name, ms] : ran) {
-            if (measurePasses) timer_.recordWallOnly(name, ms);
-            if (!cleared) editPasses_.clear(), cleared = true;
-            editPasses_.push_back({name, ms, 0.0});
-        }
+        for (const auto& [name, ms] : ran) recordOnDemand(name, ms, measurePasses);
     };
     if (methodResources_) record(methodResources_->update(sharedMethodValues_));
     if (iblResources_ && environment_.enabled())
@@ -174,6 +209,12 @@ void Renderer::uploadMethodParams(const Scene& scene) {
     glNamedBufferSubData(materialMethodParams_.id(), 0, bytes, rows.data());
 }
 
+void Renderer::recordOnDemand(const std::string& name, double ms, bool measurePasses) {
+    if (measurePasses) timer_.recordWallOnly(name, ms);
+    if (!editPassesOfThisFrame_) editPasses_.clear(), editPassesOfThisFrame_ = true;
+    editPasses_.push_back({name, ms, 0.0});
+}
+
 void Renderer::runPass(Pass& pass, const FrameContext& frame) {
     if (!pass.runs(frame)) return;
     PassScope scope(timer_, pass.name());
@@ -187,17 +228,46 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     if (iblResources_)
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
                                environment_.enabled() ? environment_.sourceCube() : 0, *capture_);
-    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass);
+    const bool temporalAa = TaaPass::wanted(settings_);
+    const IblMode& ibl = findIblMode(settings_.ibl);
+    // Reflection probes for modes that read them, re-captured only when what they see changed; like the
+    // IBL-mode resources above they render, so they run before this frame's state is set.
+    const bool probesActive = ibl.readsProbes && environment_.enabled() && probeSettings(settings_).enabled;
+    ReflectionProbes::Update probeUpdate;
+    if (probesActive) probeUpdate = probes_->update(scene, gpuScene, environment_, settings_);
+    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
     timer_.beginFrame(measurePasses     ? PassTimer::Mode::Measure
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
+    editPassesOfThisFrame_ = false;
+    if (probeUpdate.ran) {
+        recordOnDemand("probes.capture", probeUpdate.captureMs, measurePasses);
+        recordOnDemand("probes.prefilter", probeUpdate.prefilterMs, measurePasses);
+    }
 
-    const IblMode& ibl = findIblMode(settings_.ibl);
+    // Sky visibility of a new scene (baked or loaded from the cache) before any pass of this frame.
+    for (const PassTiming& ran : ambientOcclusion_->prepare(settings_, scene, gpuScene.serial(), width, height))
+        if (measurePasses) timer_.recordWallOnly(ran.name, ran.wallMs);
+
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = ibl.accumulates && sampleIndex_ > 0;
     FrameUniforms uniforms{};
     uniforms.view = camera.view();
     uniforms.projection = camera.projection(float(width) / float(height));
+    // TAA jitters the projection: a screen-space translation, so UV derivatives and glint footprints stay those
+    // of the unjittered pixel (docs/image.md). AOVs and accumulating IBL modes stay unjittered.
+    lastJitter_ = glm::vec2(0.0f);
+    if (temporalAa) {
+        const glm::vec3 forward = -glm::vec3(glm::inverse(uniforms.view)[2]);
+        lastJitter_ = taaPass_->beginFrame(uniforms.projection * uniforms.view, camera.position, forward, width, height);
+        uniforms.projection = image::jitteredProjection(uniforms.projection, lastJitter_, {width, height});
+    } else {
+        taaPass_->reset();
+    }
+    // z: the lighting pass moves glint footprints back to the unjittered pixel centre (only on jittered frames, so
+    // an unjittered frame is shaded exactly as with aa=off).
+    const bool stableGlints = settings_.common_("taa.stable_glints") > 0.5f && lastJitter_ != glm::vec2(0.0f);
+    uniforms.jitter = {lastJitter_, stableGlints ? 1.0f : 0.0f, 0.0f};
     uniforms.viewProjection = uniforms.projection * uniforms.view;
     uniforms.inverseViewProjection = glm::inverse(uniforms.viewProjection);
     uniforms.cameraPosition = glm::vec4(camera.position, 1.0f);
@@ -219,16 +289,31 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                              environment_, methodResources_.get(), iblResources_.get(),
                              width,        height,       blendSample,
                              blendSample ? 1.0f / float(sampleIndex_ + 1) : 1.0f, emptyVao_.id(),
-                             uniforms.viewProjection};
+                             uniforms.viewProjection,
+                             temporalAa, probes_.get(), probesActive, ambientOcclusion_->occlusionTexture()};
     runPass(*gbufferPass_, frame);
+    runPass(*gtaoPass_, frame);
+    runPass(*aoResolvePass_, frame);
     updateMethodData(measurePasses);
+    runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
+    runPass(*forwardSavePass_, frame);
+    runPass(*emissivePass_, frame);         // emission of opaque and masked materials
+    runPass(*transparentPass_, frame);      // glTF BLEND surfaces, back to front
+    runPass(*taaPass_, frame);
+    runPass(*exposurePass_, frame);
+    runPass(*bloomPass_, frame);
     runPass(*tonemapPass_, frame);
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ++frameIndex_;
 }
+
+void Renderer::setExposureAdaptation(float weight) { exposurePass_->setAdaptation(weight); }
+float Renderer::meteredExposureEv() const { return exposurePass_->meteredEv(); }
+unsigned Renderer::taaFrames() const { return taaPass_->framesSinceReset(); }
+void Renderer::resetHistory() { taaPass_->reset(); }
 
 std::vector<float> Renderer::readHdr() const {
     std::vector<float> pixels(size_t(targets_.width()) * targets_.height() * 4);

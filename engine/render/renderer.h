@@ -1,6 +1,7 @@
 // The deferred renderer: a fixed list of passes (render/passes/): G-buffer, lighting (with the selected glint
-// method and IBL mode), the method's own passes (GlintMethod::createPasses), tone mapping. Owns the passes and the
-// frame targets; the scene is uploaded separately (GpuScene).
+// method and IBL mode), the method's own passes (GlintMethod::createPasses), the image pipeline (TAA, auto exposure,
+// bloom; docs/image.md), tone mapping. Owns the passes and the frame targets; the scene is uploaded separately
+// (GpuScene).
 #pragma once
 #include <array>
 #include <filesystem>
@@ -18,14 +19,22 @@
 #include "render/gpu_scene.h"
 #include "render/passes/pass.h"
 #include "render/passes/pass_timer.h"
+#include "render/reflection_probes.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
 namespace glimmer {
 
 class GBufferPass;
+class GtaoPass;
+class AoResolvePass;
+class AmbientOcclusion;
 class LightingPass;
+class TaaPass;
+class ExposurePass;
+class BloomPass;
 class TonemapPass;
+class ForwardTarget;
 class RendererCapture;
 
 class Renderer {
@@ -76,6 +85,9 @@ public:
     // calls it too. `flag` names the spec's origin in error messages.
     void prepareEnvironment(const Scene& scene, const std::string& flag = "scene environment");
     const Environment& environment() const { return environment_; }
+    // Reflection probes (captured on the frames where what they see changed; render/reflection_probes.h).
+    const ReflectionProbes& probes() const { return *probes_; }
+    const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
 
     const FrameTargets& targets() const { return targets_; }
     // Readbacks, bottom row first (GL order).
@@ -86,6 +98,15 @@ public:
     std::vector<float> readGlintEnvironment() const;
     std::vector<float> readGlintLights() const;
     uint32_t frameIndex() const { return frameIndex_; }
+
+    // The image pipeline (docs/image.md). Auto exposure moves towards each frame's metered value with this
+    // weight (1: at once, the offscreen default; the window passes 1 - exp(-dt / time constant)).
+    void setExposureAdaptation(float weight);
+    float meteredExposureEv() const;
+    // TAA: frames accumulated since the last history reset, the jitter of the last frame (pixels), a reset.
+    unsigned taaFrames() const;
+    glm::vec2 lastJitter() const { return lastJitter_; }
+    void resetHistory();
 
 private:
     void buildPasses();          // every pass and the method's resources; throws, keeping the previous ones
@@ -102,12 +123,24 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     std::unique_ptr<GBufferPass> gbufferPass_;
+    std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes
+    std::unique_ptr<GtaoPass> gtaoPass_;
+    std::unique_ptr<AoResolvePass> aoResolvePass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
+    std::unique_ptr<TaaPass> taaPass_;
+    std::unique_ptr<ExposurePass> exposurePass_;
+    std::unique_ptr<BloomPass> bloomPass_;
     std::unique_ptr<TonemapPass> tonemapPass_;
+    glm::vec2 lastJitter_{0.0f};
+    // After lighting: emission and alpha-blended surfaces (render/passes/forward_target.h), sharing one target.
+    std::shared_ptr<ForwardTarget> forwardTarget_;
+    std::unique_ptr<Pass> forwardRestorePass_, forwardSavePass_, emissivePass_, transparentPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;
+    std::string methodResourcesFrom_;   // GlintMethod::resourcesFrom of the resources made (user methods' headers may change it)
     std::unique_ptr<IblModeResources> iblResources_;
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
+    std::unique_ptr<ReflectionProbes> probes_;
     Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_, iblParams_;
@@ -118,6 +151,8 @@ private:
     gl::VertexArray emptyVao_;
     PassTimer timer_;
     std::vector<PassTiming> editPasses_;
+    bool editPassesOfThisFrame_ = false;   // editPasses_ already holds on-demand passes of the current frame
+    void recordOnDemand(const std::string& name, double ms, bool measurePasses);
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
     uint32_t frameIndex_ = 0;

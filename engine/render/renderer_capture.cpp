@@ -10,7 +10,13 @@ RendererCapture::~RendererCapture() = default;
 
 std::vector<std::vector<float>> RendererCapture::renderHdr(const Scene& scene, const std::vector<Camera>& cameras,
                                                            int size) {
-    if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderRoot_, RenderSettings{});
+    if (!renderer_) {
+        // The per-object maps see the distant environment only, as before the reflection probes: a map with
+        // probes would be a second, different local-reflection scheme inside the regular-sampling comparison.
+        RenderSettings settings;
+        settings.apply("probes.enabled=0");
+        renderer_ = std::make_unique<Renderer>(shaderRoot_, settings);
+    }
     GpuScene gpuScene(scene);
     std::vector<std::vector<float>> images;
     for (const Camera& camera : cameras) {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "glints/methods.h"
 #include "ibl/ibl_modes.h"
 
@@ -11,7 +12,7 @@ namespace glimmer {
 
 const std::vector<CommonParam>& commonParams() {
     static const std::vector<CommonParam> params = {
-        {{"exposure", 0.0f, -16.0f, 16.0f, "exposure in stops applied before tone mapping (PNG and window)"}},
+        {{"exposure", 0.0f, -16.0f, 16.0f, "exposure in stops before tone mapping; exposure=auto meters the frame (then these stops compensate)"}},
         {{"ambient", 1.0f, 0.0f, 16.0f, "scale of the constant sky/ambient radiance (when no environment map)"}},
         {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
         {{"light.count", 0.0f, 0.0f, 64.0f,
@@ -38,6 +39,48 @@ const std::vector<CommonParam>& commonParams() {
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
+        // The image pipeline (docs/image.md). Offscreen defaults keep a single frame identical to the plain
+        // pipeline (aa=taa starts unjittered, bloom 0, manual exposure); the window switches TAA, bloom and
+        // auto exposure on unless they are set.
+        {{"aa", 0.0f, 0.0f, 2.0f, "anti-aliasing: off, taa (temporal, jittered) or ssaa (ssaa.factor^2 samples)",
+          {"off", "taa", "ssaa"}}},
+        {{"ssaa.factor", 4.0f, 2.0f, 8.0f, "aa=ssaa: render at N x the size and box-filter down", {}, true}},
+        {{"taa.feedback", 0.1f, 0.02f, 1.0f, "aa=taa: weight of the current frame once the history has converged"}},
+        {{"taa.glint_history", 1.0f, 0.0f, 1.0f,
+          "aa=taa: 1 keeps glints in their own history (not clipped); 0 clips them with the rest (for comparison)",
+          {}, true}},
+        {{"taa.stable_glints", 1.0f, 0.0f, 1.0f,
+          "aa=taa: 1 evaluates glints at the unjittered pixel centre (a still camera keeps each sparkle); 0 jittered",
+          {}, true}},
+        {{"taa.glint_feedback", 0.25f, 0.02f, 1.0f,
+          "aa=taa: weight of the current frame in the glint history once converged (higher keeps sparkle peaks)"}},
+        {{"bloom.strength", 0.0f, 0.0f, 1.0f, "bloom: weight of the blurred image mixed into the HDR image"}},
+        {{"bloom.radius", 1.0f, 0.25f, 4.0f, "bloom: tent radius of each upsample, in texels of its level"}},
+        {{"exposure.auto", 0.0f, 0.0f, 1.0f,
+          "1: exposure from the luminance histogram (exposure=auto); `exposure` then adds stops", {}, true}},
+        {{"tonemap", 0.0f, 0.0f, 2.0f, "tone curve: aces (Narkowicz fit), neutral (Khronos PBR Neutral), agx",
+          {"aces", "neutral", "agx"}}},
+        // Reflection probes (render/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
+        // say so (IblMode::readsProbes): prefiltered, ndf-is, glint-is, wang2020.
+        {{"probes.enabled", 1.0f, 0.0f, 1.0f,
+          "1: metallic objects reflect the scene around them (reflection probes, captured when the scene changes)",
+          {}, true}},
+        {{"probes.face_size", 128.0f, 16.0f, 512.0f, "face size of each reflection probe's cube map", {}, true}},
+        {{"probes.max", 8.0f, 0.0f, 8.0f, "most reflection probes (one per metallic instance, in scene order)", {},
+          true}},
+        // Ambient occlusion of the environment / ambient term (docs/ambient_occlusion.md).
+        {{"ao.enabled", 1.0f, 0.0f, 1.0f, "ambient occlusion of the environment / ambient term (0 or 1)", {}, true}},
+        {{"ao.screen", 1.0f, 0.0f, 1.0f, "screen-space GTAO, the small scale (0 or 1)", {}, true}},
+        {{"ao.sky", 1.0f, 0.0f, 1.0f, "baked sky visibility, the large scale (0 or 1)", {}, true}},
+        {{"ao.radius", 1.0f, 0.05f, 10.0f, "GTAO search radius in metres"}},
+        {{"ao.power", 1.0f, 0.0f, 4.0f, "intensity: the combined visibility is raised to this power"}},
+        {{"ao.slices", 2.0f, 1.0f, 16.0f, "GTAO slices per pixel", {}, true}},
+        {{"ao.steps", 4.0f, 1.0f, 32.0f, "GTAO horizon-search steps per side of a slice", {}, true}},
+        {{"ao.falloff", 0.8f, 0.0f, 0.99f, "fraction of the radius after which occluders fade out"}},
+        {{"ao.denoise", 1.0f, 0.0f, 1.0f, "4x4 depth-aware denoise of the GTAO term (0 or 1)", {}, true}},
+        {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
+        {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
+        {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
     };
     return params;
 }
@@ -70,6 +113,14 @@ void RenderSettings::apply(const std::string& assignment) {
     size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--set: expected KEY=VALUE, got '" + assignment + "'");
     std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+    if (key == "exposure") {
+        // exposure=auto | EV: a number keeps its old meaning (manual stops); auto turns the histogram on.
+        if (value == "auto") {
+            common["exposure.auto"] = 1.0f;
+            return;
+        }
+        common["exposure.auto"] = 0.0f;
+    }
     if (const CommonParam* p = findCommon(key)) {
         common[key] = parseParamValue(p->spec, value, "--set", key);
         return;
@@ -155,7 +206,8 @@ std::string describeParams() {
     out << "Common parameters (--set KEY=VALUE):\n";
     for (const CommonParam& p : commonParams()) line(p.spec.name, p.spec, p.sceneDefault);
     for (const GlintMethod& m : glintMethods()) {
-        out << "\nMethod " << m.id << ": " << m.title << " [" << m.citation << "]\n";
+        out << "\nMethod " << m.id << (m.isUserMethod() ? " (user method, " + displayPath(m.sourceFile) + ")" : "") << ": "
+            << m.title << " [" << m.citation << "]\n";
         if (m.params.empty()) out << "  (no parameters)\n";
         for (const ParamSpec& spec : m.params) {
             line(m.id + "." + spec.name, spec, false);

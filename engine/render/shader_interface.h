@@ -15,8 +15,9 @@ struct FrameUniforms {          // std140, binding 0
     glm::ivec4 viewport;        // width, height, frame index, debug view
     glm::vec4 exposure;         // exposure multiplier, light count, ambient scale, unused
     glm::uvec4 sample;          // accumulation sample index, unused x3 (see Renderer::setSampleIndex)
+    glm::vec4 jitter;           // TAA jitter in pixels (xy), glints at the unjittered centre (z = 1), unused
 };
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 5 * 16);
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 6 * 16);
 
 struct GpuLight {               // std430, binding 1
     glm::vec4 vectorType;

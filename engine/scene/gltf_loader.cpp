@@ -39,7 +39,8 @@ std::string firstLine(const std::string& text) {
 enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
     static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
-                                                    "KHR_lights_punctual", "GLIMMER_materials_glint"};
+                                                    "KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                    "GLIMMER_materials_glint"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
@@ -280,6 +281,35 @@ glm::mat3 textureTransform(const tinygltf::Value& ext) {
     return uvTransformMatrix(offset, rotation, scale);
 }
 
+// glTF 3.8.3 sampler of a texture: wrap modes (default REPEAT) and whether the minification filter reads mipmaps
+// (default: yes; NEAREST and LINEAR read level 0 only). Unknown enum values keep the default with a warning.
+TextureSampler textureSampler(const tinygltf::Model& model, const tinygltf::Texture& texture, const std::string& file,
+                              const std::function<void(const std::string&)>& warn) {
+    TextureSampler out;
+    if (texture.sampler < 0) return out;
+    const tinygltf::Sampler& sampler = element(model.samplers, texture.sampler, "sampler", file);
+    auto wrap = [&](int mode, const char* axis) {
+        switch (mode) {
+            case -1: case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::Repeat;
+            case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
+            case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
+            default:
+                warn("samplers[" + std::to_string(texture.sampler) + "]." + axis + " " + std::to_string(mode) +
+                     " is not a wrap mode; REPEAT used");
+                return TextureWrap::Repeat;
+        }
+    };
+    out.wrapS = wrap(sampler.wrapS, "wrapS");
+    out.wrapT = wrap(sampler.wrapT, "wrapT");
+    out.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+    out.nearestMag = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    return out;
+}
+
+int samplerKey(const TextureSampler& s) {
+    return int(s.wrapS) | int(s.wrapT) << 2 | int(s.mipmaps) << 4 | int(s.nearestMag) << 5;
+}
+
 bool sameTransform(const glm::mat3& a, const glm::mat3& b) {
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r)
@@ -315,6 +345,9 @@ public:
     }
 
     Warnings& warnings() { return warnings_; }
+    // What tinygltf reported about an external image file it could not read (path or URI -> reason), so that the
+    // one warning of a texture without pixels can name the file and say why instead of tinygltf's raw lines.
+    void setImageFileProblems(std::vector<std::pair<std::string, std::string>> problems) { imageFileProblems_ = std::move(problems); }
 
 private:
     void checkExtensions() {
@@ -342,16 +375,18 @@ private:
             warnings_.add("texture " + std::to_string(textureIndex) + " has no source image it can decode; ignored");
             return -1;
         }
-        auto key = std::make_tuple(source, srgb, normalScale, occlusionStrength);
+        TextureSampler sampler = textureSampler(model_, texture, file_, [this](const std::string& m) { warnings_.add(m); });
+        auto key = std::make_tuple(source, srgb, normalScale, occlusionStrength, samplerKey(sampler));
         if (auto it = textureCache_.find(key); it != textureCache_.end()) return it->second;
         const tinygltf::Image& image = element(model_.images, source, "image", file_);
         TextureData data;
+        data.sampler = sampler;
         data.name = !image.name.empty() ? image.name
                     : !image.uri.empty() && image.uri.rfind("data:", 0) != 0 ? image.uri
                                                                              : "image " + std::to_string(source);
         data.srgb = srgb;
         if (!toRgba8(image, data.rgba)) {
-            warnings_.add(data.name + " has no decoded pixels; textures using it are ignored");
+            warnings_.add(imageProblem(image, source));
             textureCache_[key] = -1;
             return -1;
         }
@@ -379,6 +414,21 @@ private:
         return index;
     }
 
+    // One line for an image without pixels: its file (or index) and the reason.
+    std::string imageProblem(const tinygltf::Image& image, int source) const {
+        const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+        const std::string what = external ? "image file '" + image.uri + "' (images[" + std::to_string(source) + "])"
+                                          : "images[" + std::to_string(source) + "]";
+        if (external) {
+            auto endsWith = [](const std::string& text, const std::string& tail) {
+                return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+            };
+            for (const auto& [path, reason] : imageFileProblems_)
+                if (endsWith(path, image.uri) || endsWith(image.uri, path)) return what + " " + reason + "; textures using it are ignored";
+        }
+        return what + " has no decoded pixels; textures using it are ignored";
+    }
+
     Material material(int index) {
         const tinygltf::Material& gm = model_.materials[size_t(index)];
         Material m;
@@ -398,14 +448,8 @@ private:
         m.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
         m.doubleSided = gm.doubleSided;   // glTF 2.0 Sec. 3.9.5: single-sided (back faces culled) unless set
         if (gm.alphaMode == "MASK") m.alphaCutoff = float(gm.alphaCutoff);
-        if (gm.alphaMode == "BLEND") {
-            // The deferred pipeline has no blending: the closest meaningful rendering is a mask at one half.
-            warnings_.add("material '" + m.name + "': alphaMode BLEND is rendered as MASK with cutoff 0.5");
-            m.alphaCutoff = 0.5f;
-        }
-        if (gm.emissiveTexture.index >= 0 ||
-            (gm.emissiveFactor.size() == 3 && (gm.emissiveFactor[0] > 0 || gm.emissiveFactor[1] > 0 || gm.emissiveFactor[2] > 0)))
-            warnings_.add("material '" + m.name + "': emission is not rendered");
+        m.blend = gm.alphaMode == "BLEND";   // composited after lighting by the transparent pass
+        m.emissive = emission(gm, index);
 
         // One UV transform per material (the engine applies Material::uvTransform to every texture lookup).
         // The base colour's transform wins; a texture with a different transform or another UV set is dropped.
@@ -416,6 +460,7 @@ private:
             {"normal", gm.normalTexture.index, gm.normalTexture.texCoord, &gm.normalTexture.extensions, &m.normalTexture, false, float(gm.normalTexture.scale), 1},
             {"metallicRoughness", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions, &m.metallicRoughnessTexture, false, 1, 1},
             {"occlusion", gm.occlusionTexture.index, gm.occlusionTexture.texCoord, &gm.occlusionTexture.extensions, &m.occlusionTexture, false, 1, float(gm.occlusionTexture.strength)},
+            {"emissive", gm.emissiveTexture.index, gm.emissiveTexture.texCoord, &gm.emissiveTexture.extensions, &m.emissiveTexture, true, 1, 1},
         };
         bool haveTransform = false;
         for (const Slot& slot : slots) {
@@ -441,11 +486,41 @@ private:
             }
             *slot.target = sceneTexture(slot.gltfTexture, slot.srgb, slot.normalScale, slot.occlusionStrength);
         }
+        if (gm.emissiveTexture.index >= 0 && m.emissiveTexture < 0 && m.emissive != glm::vec3(0.0f)) {
+            // emissiveFactor multiplies the texture (glTF 3.9.2): alone it would light the whole surface. One
+            // line per model, whatever the number of materials.
+            m.emissive = glm::vec3(0.0f);
+            warnings_.add("emission is off on materials whose emissive texture cannot be used");
+        }
         // GLIMMER_materials_glint or its extras form (gltf_glint_material.h); its density texture is linear.
         readGlintMaterial(gm, m, file_,
                           [&](int t) { return t >= 0 && size_t(t) < model_.textures.size() ? sceneTexture(t, false) : -2; },
                           [&](const std::string& w) { warnings_.add(w); });
         return m;
+    }
+
+    // Emitted radiance: emissiveFactor (glTF 3.9.2, linear, each in [0, 1]) times KHR_materials_emissive_strength's
+    // emissiveStrength (>= 0, default 1). A factor or strength outside its range is an error naming the field.
+    glm::vec3 emission(const tinygltf::Material& gm, int index) {
+        const std::string where = file_ + ": materials[" + std::to_string(index) + "].";
+        glm::vec3 factor(0.0f);
+        if (gm.emissiveFactor.size() == 3)
+            for (int c = 0; c < 3; ++c) {
+                double v = gm.emissiveFactor[size_t(c)];
+                if (!(v >= -1e-3 && v <= 1.001))
+                    throw Error(where + "emissiveFactor[" + std::to_string(c) + "] = " + std::to_string(v) + " is outside [0, 1]");
+                factor[c] = std::clamp(float(v), 0.0f, 1.0f);
+            }
+        float strength = 1.0f;
+        if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end() &&
+                                                                           it->second.Has("emissiveStrength")) {
+            const tinygltf::Value& v = it->second.Get("emissiveStrength");
+            double value = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
+            if (!(value >= 0.0 && value <= 1e6))
+                throw Error(where + "extensions.KHR_materials_emissive_strength.emissiveStrength is not a number in [0, 1e6]");
+            strength = float(value);
+        }
+        return factor * strength;
     }
 
     int defaultMaterial() {
@@ -462,7 +537,7 @@ private:
     // Each distinct glTF primitive geometry (same attribute and index accessors) becomes one engine mesh;
     // primitives that differ only in material share it, and nodes instance it.
     void buildMeshes() {
-        using GeometryKey = std::tuple<int, int, int, int, int>;  // POSITION, NORMAL, TANGENT, TEXCOORD_0, indices
+        using GeometryKey = std::tuple<int, int, int, int, int, int>;  // POSITION, NORMAL, TANGENT, TEXCOORD_0, COLOR_0, indices
         std::map<GeometryKey, uint32_t> meshOfGeometry;
         primitivesOfMesh_.resize(model_.meshes.size());
         for (size_t mi = 0; mi < model_.meshes.size(); ++mi) {
@@ -478,7 +553,8 @@ private:
                 if (attribute("POSITION") < 0)
                     throw Error(file_ + ": primitive without POSITION in mesh " + std::to_string(mi));
                 if (!primitive.targets.empty()) warnings_.add("morph targets are ignored");
-                GeometryKey key{attribute("POSITION"), attribute("NORMAL"), attribute("TANGENT"), attribute("TEXCOORD_0"), primitive.indices};
+                GeometryKey key{attribute("POSITION"), attribute("NORMAL"), attribute("TANGENT"), attribute("TEXCOORD_0"),
+                                attribute("COLOR_0"), primitive.indices};
                 auto found = meshOfGeometry.find(key);
                 uint32_t meshIndex;
                 if (found != meshOfGeometry.end()) {
@@ -526,6 +602,7 @@ private:
         optional("TEXCOORD_0", mesh.uvs, readFloatAccessor<2>);
         optional("NORMAL", mesh.normals, readFloatAccessor<3>);
         optional("TANGENT", mesh.tangents, readFloatAccessor<4>);
+        readVertexColors(primitive, mesh, meshIndex);
         if (primitive.indices >= 0) {
             mesh.indices = readIndices(model_, primitive.indices, file_);
         } else {
@@ -572,8 +649,34 @@ private:
                 mesh.tangents[v] = glm::vec4(glm::normalize(t), mesh.tangents[v].w < 0.0f ? -1.0f : 1.0f);
             }
         }
-        if (mesh.tangents.empty()) generateTangents(mesh);
+        // glTF's v runs down the image and its normal maps are +Y up: the bitangent points along -dP/dv.
+        if (mesh.tangents.empty()) generateTangents(mesh, BitangentConvention::ImageUp);
         return mesh;
+    }
+
+    // COLOR_0 (glTF 3.7.2.1): VEC3 or VEC4, float or normalized unsigned byte / short, linear; it multiplies the
+    // base colour (3.9.2). Non-finite or negative values are clamped to [0, 1] like the other colour inputs.
+    void readVertexColors(const tinygltf::Primitive& primitive, MeshData& mesh, int meshIndex) {
+        auto it = primitive.attributes.find("COLOR_0");
+        if (it == primitive.attributes.end()) return;
+        const tinygltf::Accessor& accessor = element(model_.accessors, it->second, "accessor", file_);
+        const int components = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
+        if (components != 3 && components != 4) {
+            warnings_.add("COLOR_0 of mesh " + std::to_string(meshIndex) + " is not VEC3 or VEC4; ignored");
+            return;
+        }
+        if (components == 4) {
+            mesh.colors = readFloatAccessor<4>(model_, it->second, file_);
+        } else {
+            for (const glm::vec3& c : readFloatAccessor<3>(model_, it->second, file_)) mesh.colors.push_back(glm::vec4(c, 1.0f));
+        }
+        if (mesh.colors.size() != mesh.positions.size()) {
+            warnings_.add("COLOR_0 of mesh " + std::to_string(meshIndex) + " has the wrong count; ignored");
+            mesh.colors.clear();
+            return;
+        }
+        for (glm::vec4& c : mesh.colors)
+            for (int k = 0; k < 4; ++k) c[k] = std::isfinite(c[k]) ? std::clamp(c[k], 0.0f, 1.0f) : 1.0f;
     }
 
     void walkNodes() {
@@ -714,10 +817,11 @@ private:
     std::string file_;
     Warnings warnings_;
     Scene scene_;
-    std::map<std::tuple<int, bool, float, float>, int> textureCache_;
+    std::map<std::tuple<int, bool, float, float, int>, int> textureCache_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> primitivesOfMesh_;
     std::vector<Camera> gltfCameras_;
     std::vector<Light> gltfLights_;
+    std::vector<std::pair<std::string, std::string>> imageFileProblems_;
     int defaultMaterial_ = -1;
     uint64_t totalVertices_ = 0, totalIndices_ = 0, skippedInstances_ = 0;
     static constexpr uint32_t kNoMesh = 0xFFFFFFFFu;
@@ -872,14 +976,29 @@ Scene loadGltfScene(const std::filesystem::path& path) {
     }
     bytes = {};
     SceneBuilder builder(model, file);
-    // tinygltf reports missing images and similar non-fatal problems as warnings, one per line.
+    // tinygltf reports missing images and similar non-fatal problems as warnings, one per line. Its lines about
+    // external image files ("File not found : X", "File read error : X : why", "Failed to load external 'uri' for
+    // image[i] ...") become the reason in the builder's one warning per image, which names the file.
+    std::vector<std::pair<std::string, std::string>> imageFileProblems;
     for (size_t start = 0; start < warning.size();) {
         size_t end = warning.find('\n', start);
         std::string line = firstLine(warning.substr(start, end == std::string::npos ? std::string::npos : end - start));
-        if (!line.empty()) builder.warnings().add(line);
+        const std::string notFound = "File not found : ", readError = "File read error : ";
+        if (line.rfind(notFound, 0) == 0) {
+            imageFileProblems.push_back({line.substr(notFound.size()), "was not found"});
+        } else if (line.rfind(readError, 0) == 0) {
+            std::string rest = line.substr(readError.size());
+            size_t colon = rest.find(" : ");
+            imageFileProblems.push_back({rest.substr(0, colon), "could not be read" + (colon == std::string::npos ? std::string() : " (" + rest.substr(colon + 3) + ")")});
+        } else if (line.rfind("Failed to load external 'uri' for image[", 0) == 0 || line.rfind("Image data is empty for image[", 0) == 0) {
+            // said by the builder's warning
+        } else if (!line.empty()) {
+            builder.warnings().add(line);
+        }
         if (end == std::string::npos) break;
         start = end + 1;
     }
+    builder.setImageFileProblems(std::move(imageFileProblems));
     try {
         return builder.build(path.stem().string());
     } catch (const Error&) {

@@ -107,7 +107,7 @@ void MeshBuilder::grid(int cellsS, int cellsT, const std::function<glm::vec3(flo
 }
 
 MeshData MeshBuilder::finish() {
-    generateTangents(mesh_);
+    generateTangents(mesh_, BitangentConvention::UvUp);
     return std::move(mesh_);
 }
 

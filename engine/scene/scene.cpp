@@ -20,7 +20,7 @@ const Camera& Scene::camera(const std::string& name) const {
     throw UsageError("--camera: scene " + this->name + " has no camera '" + name + "' (has: " + known + ")");
 }
 
-void generateTangents(MeshData& mesh) {
+void generateTangents(MeshData& mesh, BitangentConvention convention) {
     size_t n = mesh.positions.size();
     std::vector<glm::vec3> tan(n, glm::vec3(0.0f)), bitan(n, glm::vec3(0.0f));
     if (mesh.uvs.size() != n) mesh.uvs.assign(n, glm::vec2(0.0f));
@@ -45,7 +45,9 @@ void generateTangents(MeshData& mesh) {
             t = glm::cross(axis, normal);
         }
         t = glm::normalize(t);
-        float handedness = glm::dot(glm::cross(normal, t), bitan[v]) < 0.0f ? -1.0f : 1.0f;
+        // bitan is dP/dv; ImageUp wants the bitangent along -dP/dv (glTF's image up).
+        glm::vec3 wanted = convention == BitangentConvention::ImageUp ? -bitan[v] : bitan[v];
+        float handedness = glm::dot(glm::cross(normal, t), wanted) < 0.0f ? -1.0f : 1.0f;
         mesh.tangents[v] = glm::vec4(t, handedness);
     }
 }

@@ -16,8 +16,18 @@ struct MeshData {
     std::vector<glm::vec3> normals;
     std::vector<glm::vec4> tangents;  // xyz tangent (dP/du), w = handedness: bitangent = w * cross(n, t)
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> colors;    // glTF COLOR_0 (linear RGBA), multiplies the base colour; empty = white
     std::vector<uint32_t> indices;
     size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Texture sampler state (glTF 3.8.3 samplers): wrap modes per axis, and whether minification uses mipmaps.
+enum class TextureWrap : int { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
+struct TextureSampler {
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    bool mipmaps = true;        // false: glTF minFilter NEAREST or LINEAR (no mip levels are read)
+    bool nearestMag = false;    // glTF magFilter NEAREST
+    bool operator==(const TextureSampler&) const = default;
 };
 
 // 8-bit RGBA image for material textures (decoded on load; mipmaps are built on upload).
@@ -26,7 +36,12 @@ struct TextureData {
     int width = 0, height = 0;
     std::vector<uint8_t> rgba;
     bool srgb = false;  // base colour textures are sRGB-encoded
+    TextureSampler sampler;
 };
+
+// glTF alphaMode (3.9.4): OPAQUE ignores alpha, MASK cuts at alphaCutoff, BLEND is composited back to front in
+// the forward pass after lighting (render/passes/transparent_pass.h).
+enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
 enum class NdfType : int { Ggx = 0, Beckmann = 1 };
 
@@ -54,6 +69,11 @@ struct Material {
     // (what the methods count in). 1 for the built-in scenes (UVs in metres); glTF models measure it per material.
     float surfacePerUvArea = 1.0f;
     float alphaCutoff = -1.0f; // >= 0: alpha mask
+    bool blend = false;        // alphaMode BLEND: drawn by the transparent pass, not into the G-buffer
+    // Emitted radiance (W sr^-1 m^-2 per unit, linear RGB): glTF emissiveFactor x KHR_materials_emissive_strength,
+    // times emissiveTexture (sRGB) when present. Added by the emissive / transparent passes.
+    glm::vec3 emissive{0.0f};
+    int emissiveTexture = -1;
     // false: back faces are culled (glTF doubleSided: false). Only for surfaces whose back faces are never seen
     // (closed solids, walls against solids); two-sided ones shade back faces with the flipped normal.
     bool doubleSided = true;
@@ -106,12 +126,21 @@ struct Scene {
     bool fallbackLights = false;   // the lights are a default sun / key + fill, not the model's or the file's own
     std::string environment;       // "" = the procedural default sky, "none", or an image path
     glm::vec3 skyColor{0.0f};      // background and constant ambient radiance when no environment is active
+    std::vector<std::string> methodFiles;  // user glint methods of a scene file ("methodFiles"), resolved paths
 
     size_t triangleCount() const;
     const Camera& camera(const std::string& name) const;  // throws UsageError naming --camera
 };
 
-// Fills normals' tangents when a mesh has none, from UV gradients per triangle (Lengyel's method).
-void generateTangents(MeshData& mesh);
+// Which way the bitangent (w * cross(n, t)) of generated tangent frames points in UV space.
+//  - UvUp: along +dP/dv. The built-in scenes' metric UV frames (MeshBuilder), whose v runs up walls and along
+//    the surface: (dP/du, dP/dv, n) is their right-handed frame, and the glint methods read slopes in it.
+//  - ImageUp: along -dP/dv, the image's up. glTF's v runs down the image (3.7.2.1: origin top left) and its
+//    normal maps are +Y up (3.9.3), so glTF models (and authored TANGENTs, whose w follows MikkTSpace) use this.
+enum class BitangentConvention { UvUp, ImageUp };
+
+// Fills normals' tangents when a mesh has none, from UV gradients per triangle (Lengyel's method); the
+// handedness w follows `convention`.
+void generateTangents(MeshData& mesh, BitangentConvention convention);
 
 }  // namespace glimmer

@@ -364,7 +364,31 @@ uint32_t findByName(const Reader& r, const std::vector<std::string>& names, cons
     r.fail(where + "." + key, "no " + std::string(key) + " named '" + name + "' (have: " + known + ")");
 }
 
+// User glint methods the scene comes with (glints/user_methods.h), relative to the scene file; loaded by the
+// command line (readSceneMethodFiles) before the scene itself, so --method and --set can name them.
+std::vector<std::string> methodFilesOf(const Reader& r, const Json& doc, const std::filesystem::path& path) {
+    std::vector<std::string> files;
+    if (!doc.is_object() || !doc.contains("methodFiles")) return files;
+    const Json& list = doc["methodFiles"];
+    if (!list.is_array()) r.fail("methodFiles", "expected an array");
+    for (size_t i = 0; i < list.size(); ++i) {
+        if (!list[i].is_string() || list[i].get<std::string>().empty())
+            r.fail("methodFiles[" + std::to_string(i) + "]", "expected the path of a .glsl method file");
+        std::filesystem::path p = list[i].get<std::string>();
+        files.push_back((p.is_relative() ? path.parent_path() / p : p).string());
+    }
+    return files;
+}
+
 }  // namespace
+
+std::vector<std::string> readSceneMethodFiles(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) > kMaxSceneFileBytes) return {};
+    Json doc = Json::parse(readTextFile(path), nullptr, false);
+    if (doc.is_discarded()) return {};   // loadSceneFile reports the syntax error with its position
+    return methodFilesOf(Reader(path), doc, path);
+}
 
 Scene loadSceneFile(const std::filesystem::path& path) {
     std::error_code ec;
@@ -387,7 +411,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
                     what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
     }
     r.checkKeys(doc, "scene", {"name", "base", "sky", "environment", "meshes", "models", "materials", "instances",
-                               "lights", "cameras", "walkthrough", "description"});
+                               "lights", "cameras", "walkthrough", "description", "methodFiles"});
 
     Scene scene;
     if (doc.contains("base")) {
@@ -413,6 +437,8 @@ Scene loadSceneFile(const std::filesystem::path& path) {
         return doc[key];
     };
     auto at = [](const char* key, size_t i) { return std::string(key) + "[" + std::to_string(i) + "]"; };
+
+    scene.methodFiles = methodFilesOf(r, doc, path);
 
     const Json& models = array("models");
     std::vector<Light> modelLights;

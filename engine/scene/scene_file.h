@@ -3,6 +3,8 @@
 // parameters), lights, cameras, the walkthrough order and the environment.
 #pragma once
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -10,5 +12,8 @@ namespace glimmer {
 
 // Throws glimmer::Error naming the file (and the offending key) on missing, malformed or inconsistent input.
 Scene loadSceneFile(const std::filesystem::path& path);
+
+// Only the "methodFiles" of a scene file (paths resolved against its folder); empty when the file does not parse.
+std::vector<std::string> readSceneMethodFiles(const std::filesystem::path& path);
 
 }  // namespace glimmer

@@ -51,4 +51,11 @@ Scene loadScene(const std::string& nameOrPath) {
     return scene;
 }
 
+std::vector<std::string> sceneMethodFiles(const std::string& nameOrPath) {
+    std::filesystem::path file = nameOrPath;
+    if (isPlainName(nameOrPath)) file = defaultContentDir() / (nameOrPath + ".json");
+    if (file.extension() != ".json") return {};
+    return readSceneMethodFiles(file);
+}
+
 }  // namespace glimmer

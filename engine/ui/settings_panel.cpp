@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/files.h"
 #include "render/aov.h"
 #include "ibl/ibl_modes.h"
 #include "ui/font.h"
@@ -29,12 +30,32 @@ ParamSpec moveSpeedSpec() {
     return spec;
 }
 
-std::string commonGroupTitle(const std::string& prefix) {
-    if (prefix.empty()) return "Image";
-    if (prefix == "light") return "Lights";
-    if (prefix == "env") return "Environment";
-    if (prefix == "material") return "Material overrides (all)";
+// Parameter prefixes shown together in one section, so the closed panel keeps few headers and fits at 1280x720.
+static std::string sectionOfPrefix(const std::string& prefix) {
+    if (prefix == "ssaa" || prefix == "taa" || prefix == "bloom" || prefix == "exposure") return "";
+    if (prefix == "probes" || prefix == "ao") return "env";
     return prefix;
+}
+
+std::string commonGroupTitle(const std::string& prefix) {
+    const std::string section = sectionOfPrefix(prefix);
+    if (section.empty()) return "Image, anti-aliasing, bloom";
+    if (section == "light") return "Lights";
+    if (section == "env") return "Environment, occlusion, probes";
+    if (section == "material") return "Material overrides (all)";
+    return section;
+}
+
+// Parameters of the sky-visibility bake: each change re-bakes the scene for seconds, so they are set with
+// --set (or a scene file), not dragged; the panel then has room for the interactive ones at 1280x720.
+// The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce).
+bool panelHidesParameter(const std::string& name) {
+    static const char* const names[] = {"ao.sky_cell", "ao.sky_rays", "ao.slices",      "ao.steps",
+                                        "ao.falloff",  "ao.denoise",  "ao.multibounce", "ssaa.factor",
+                                        "taa.glint_history", "taa.stable_glints"};
+    for (const char* n : names)
+        if (name == n) return true;
+    return false;
 }
 
 static std::string prefixOf(const std::string& name) {
@@ -63,6 +84,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         if (!methods.empty()) {
             const GlintMethod& method = methods[size_t(methodIndex)];
             ui.label(method.title);
+            // A user method: where it comes from (edits to the file reload it, header included).
+            if (method.isUserMethod()) ui.label("file " + displayPath(method.sourceFile));
             if (method.params.empty()) ui.label("(no parameters)");
             for (const ParamSpec& spec : method.params) {
                 float value = paramOr(settings.methodValues(method.id), spec);
@@ -72,6 +95,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
                 result.settingsChanged |= edit != Edit::None;
             }
         }
+        for (size_t i = 0; i < window.methodFileChoices.size(); ++i)
+            if (ui.button("load " + window.methodFileChoices[i])) result.loadMethodFile = int(i);
     }
 
     if (ui.section("Scene, camera, window")) {
@@ -99,8 +124,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
     // belongs to the image group.
     std::vector<std::string> groups;
     for (const CommonParam& p : commonParams())
-        if (std::find(groups.begin(), groups.end(), prefixOf(p.spec.name)) == groups.end())
-            groups.push_back(prefixOf(p.spec.name));
+        if (std::find(groups.begin(), groups.end(), sectionOfPrefix(prefixOf(p.spec.name))) == groups.end())
+            groups.push_back(sectionOfPrefix(prefixOf(p.spec.name)));
     for (const std::string& group : groups) {
         if (!ui.section(commonGroupTitle(group))) continue;
         if (group.empty()) {
@@ -116,7 +141,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
             }
         }
         for (const CommonParam& p : commonParams()) {
-            if (prefixOf(p.spec.name) != group) continue;
+            if (sectionOfPrefix(prefixOf(p.spec.name)) != group || panelHidesParameter(p.spec.name)) continue;
             bool fromScene = p.sceneDefault && !settings.isSet(p.spec.name);
             float value = settings.common_(p.spec.name);
             Edit edit = ui.slider(p.spec.name, p.spec, value, fromScene ? "scene" : nullptr);

@@ -24,6 +24,9 @@ struct WindowControls {
     bool walking = false;                   // walking (collision) or flying
     bool recording = false;                 // a camera path is being recorded (R)
     bool hasRecordedPath = false;           // P plays the recorded (or loaded) path instead of the cameras
+    // User glint method files the panel offers to load (content/methods/ and the folders of loaded ones), as
+    // shown; glints/user_methods.h.
+    std::vector<std::string> methodFileChoices;
 };
 
 struct PanelResult {
@@ -37,6 +40,7 @@ struct PanelResult {
     bool reloadShaders = false;
     bool vsyncChanged = false;
     bool screenshot = false;
+    int loadMethodFile = -1;        // index into methodFileChoices
 };
 
 constexpr int kPanelWidthChars = 34;
@@ -60,5 +64,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
 
 // Heading for a common parameter group ("" -> "Image", "light" -> "Lights", ...); unknown prefixes as is.
 std::string commonGroupTitle(const std::string& prefix);
+// Common parameters set only with --set or a scene file (bake and sampling settings), not in the panel.
+bool panelHidesParameter(const std::string& name);
 
 }  // namespace glimmer::ui

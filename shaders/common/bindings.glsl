@@ -7,8 +7,11 @@
 #define BINDING_LIGHTS 1             // storage LightBlock
 #define BINDING_MATERIALS 2          // storage MaterialBlock
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's shared parameters (PS_<NAME>; P_<NAME> outside lighting)
-#define BINDING_MATERIAL_METHOD_PARAMS 4  // storage: the method's parameters per material (P_<NAME> in lighting)
+#define BINDING_MATERIAL_METHOD_PARAMS 3  // storage (not the uniform 3 above): the method's parameters per material (P_<NAME> in lighting)
+#define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
+#define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
+#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15
@@ -30,6 +33,8 @@
 #define UNIT_IBL_FIRST 16            // IBL modes: 16..23
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
+#define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
+#define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0
@@ -37,6 +42,23 @@
 #define UNIT_MATERIAL_NORMAL 2
 #define UNIT_MATERIAL_OCCLUSION 3
 #define UNIT_MATERIAL_GLINT_MASK 4
+#define UNIT_MATERIAL_EMISSIVE 5        // emissive and transparent passes only (unit 5 is the G-buffer depth elsewhere)
+
+// Ambient-occlusion passes (shaders/ao/: gtao.frag, ao_resolve.frag), before lighting.
+#define UNIT_AO_DEPTH 0
+#define UNIT_AO_NORMAL 1
+#define UNIT_AO_RAW 2                // the GTAO pass's visibility, before denoising
+#define UNIT_AO_BASE_COLOR 3
+#define UNIT_AO_TANGENT_METALLIC 4
+#define UNIT_AO_SKY 5                // sampler3D: baked sky-visibility probes
 
 // Full-screen passes after lighting read their inputs from units 0.. in the order their shaders list them.
 #define UNIT_TONEMAP_HDR 0
+#define UNIT_TONEMAP_BLOOM 1         // half-size bloom sum (bloom pass), bilinear
+#define UNIT_TAA_CURRENT 0           // this frame's HDR radiance
+#define UNIT_TAA_GLINT_PART 1        // the glint part of it (lighting pass, location 3)
+#define UNIT_TAA_DEPTH 2
+#define UNIT_TAA_HISTORY_BASE 3      // previous resolve, non-glint part (+ sample count in a)
+#define UNIT_TAA_HISTORY_GLINT 4     // previous resolve, glint part
+#define UNIT_BLOOM_SOURCE 0
+#define UNIT_EXPOSURE_HDR 0

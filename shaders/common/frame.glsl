@@ -10,6 +10,8 @@ layout(std140, binding = BINDING_FRAME) uniform FrameBlock {
     ivec4 u_viewport;        // width, height, frame index, debug view (AOV id)
     vec4 u_exposure;         // x: exposure multiplier (2^EV), y: light count, z: ambient scale, w: unused
     uvec4 u_sample;          // x: accumulation sample index (0 = first estimate of this view; IBL modes)
+    vec4 u_jitter;           // xy: TAA sub-pixel jitter of this frame in pixels; z: 1 when glints are evaluated
+                             // at the unjittered pixel centre (taa.stable_glints; docs/image.md)
 };
 
 // Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position),
@@ -42,4 +44,5 @@ const int VIEW_GLINT = 7;
 const int VIEW_FOOTPRINT = 8;
 const int VIEW_TANGENT = 9;
 const int VIEW_ROUGHNESS_METALLIC = 10;
-const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)
+const int VIEW_EXTRA = 11;
+const int VIEW_AO = 13;      // ambient occlusion (shaders/ao/)   // method-specific channel (glintscale, evaluation counters, ...)

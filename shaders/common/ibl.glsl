@@ -6,6 +6,10 @@
 // then reflects exactly the incident constant radiance: the white furnace holds). The per-light loop of
 // lighting.frag keeps its unweighted Lambert + Cook-Torrance sum.
 // Deviation: glinty materials get the smooth prefiltered baseline here; glint methods act on the lights only.
+// Local reflections: the *At lookups (envLightingAt, envPrefilteredAt, envRadianceAt) read the reflection probe
+// whose influence box holds the shaded point (render/reflection_probes.h), parallax-corrected to its proxy box
+// (Lagarde & Zanuttini 2012), and blend it with the distant map by the probe's coverage alpha. Diffuse stays the
+// distant SH irradiance (probes hold no irradiance).
 #include "common/bindings.glsl"
 #include "common/constants.glsl"
 
@@ -19,6 +23,22 @@ layout(std140, binding = BINDING_ENVIRONMENT) uniform EnvironmentBlock {
     vec4 u_envParams;     // x intensity, y enabled, z last prefiltered level, w unused
     vec4 u_envRotation;   // x cos, y sin of env.rotation about +y
 };
+
+// Mirrors ProbeUniforms in engine/render/reflection_probes.h (std140). A block with count 0 is bound when the
+// frame reads no probes.
+struct GpuProbe {
+    vec4 position;       // xyz capture point, w fade distance at the influence faces
+    vec4 influenceMin;
+    vec4 influenceMax;
+    vec4 proxyMin;       // box the reflected ray is intersected with
+    vec4 proxyMax;
+};
+layout(std140, binding = BINDING_PROBES) uniform ProbeBlock {
+    vec4 u_probeParams;  // x count, y last prefiltered level
+    GpuProbe u_probes[8];
+};
+// Premultiplied radiance (rgb) and coverage (a), layer = 2 * probe + NDF, same levels as u_envSpecular.
+layout(binding = UNIT_PROBE_SPECULAR) uniform samplerCubeArray u_probeSpecular;
 
 bool envEnabled() { return u_envParams.y > 0.5; }
 
@@ -73,6 +93,77 @@ vec3 envLighting(vec3 n, vec3 toEye, vec3 diffuseAlbedo, vec3 f0, float alpha, i
     vec2 ab = envBrdf(nDotV, alpha, ndf);
     vec3 specularAlbedo = f0 * ab.x + ab.y;
     vec3 specular = envPrefiltered(r, alpha, ndf) * specularAlbedo;
+    vec3 diffuse = diffuseAlbedo * (1.0 - specularAlbedo) * envDiffuse(n);
+    return diffuse + specular;
+}
+
+// The probe whose influence box holds `position` (the smallest when boxes nest: an object's own probe wins over a
+// larger one around it) and its weight, 1 inside and falling linearly to 0 over the fade distance at the box faces.
+// Returns -1 when none does.
+int probeAt(vec3 position, out float weight) {
+    int best = -1;
+    float bestVolume = 3.4e38;
+    weight = 0.0;
+    int count = int(u_probeParams.x + 0.5);
+    for (int i = 0; i < count; ++i) {
+        vec3 lo = u_probes[i].influenceMin.xyz, hi = u_probes[i].influenceMax.xyz;
+        if (any(lessThan(position, lo)) || any(greaterThan(position, hi))) continue;
+        vec3 extent = hi - lo;
+        float volume = extent.x * extent.y * extent.z;
+        if (volume >= bestVolume) continue;
+        vec3 inside = min(position - lo, hi - position);
+        best = i;
+        bestVolume = volume;
+        weight = clamp(min(inside.x, min(inside.y, inside.z)) / max(u_probes[i].position.w, 1e-4), 0.0, 1.0);
+    }
+    return best;
+}
+
+// Parallax correction (Lagarde & Zanuttini 2012, "Local Image-based Lighting With Parallax-corrected Cubemap"):
+// the ray from `position` along r leaves the proxy box at the farthest-of-nearest slab exit; the probe is read in
+// the direction from its capture point to that exit point. Applied at every roughness: the paper's distortion of
+// rough lobes near the box faces is accepted (no lobe-dependent blend back to r).
+vec3 probeDirection(int i, vec3 position, vec3 r) {
+    vec3 safe = mix(vec3(1e-6), vec3(-1e-6), lessThan(r, vec3(0.0)));
+    vec3 rr = mix(r, safe, lessThan(abs(r), vec3(1e-6)));
+    vec3 tMax = (u_probes[i].proxyMax.xyz - position) / rr;
+    vec3 tMin = (u_probes[i].proxyMin.xyz - position) / rr;
+    vec3 tExit = max(tMax, tMin);
+    float t = max(min(tExit.x, min(tExit.y, tExit.z)), 0.0);
+    vec3 d = position + t * r - u_probes[i].position.xyz;
+    return dot(d, d) > 1e-12 ? d : r;
+}
+
+// Weighted probe lookup at `lod` for world position and direction (vec4(0): no probe, the distant map alone).
+vec4 probeSample(vec3 position, vec3 r, float lod, int ndf) {
+    if (u_probeParams.x < 0.5) return vec4(0.0);
+    float weight;
+    int i = probeAt(position, weight);
+    if (i < 0 || weight <= 0.0) return vec4(0.0);
+    return weight * textureLod(u_probeSpecular, vec4(probeDirection(i, position, r), float(2 * i + ndf)), lod);
+}
+
+// envPrefiltered with local reflections at `position`: probe (premultiplied) over the distant map.
+vec3 envPrefilteredAt(vec3 position, vec3 r, float alpha, int ndf) {
+    vec3 distant = envPrefiltered(r, alpha, ndf);
+    vec4 probe = probeSample(position, r, sqrt(clamp(alpha, 0.0, 1.0)) * u_probeParams.y, ndf);
+    return probe.rgb + (1.0 - probe.a) * distant;
+}
+
+// envRadiance(d, 0) (unfiltered level 0) with local reflections at `position`, for the Monte Carlo modes.
+vec3 envRadianceAt(vec3 position, vec3 d) {
+    vec3 distant = envRadiance(d, 0.0);
+    vec4 probe = probeSample(position, d, 0.0, 0);
+    return probe.rgb + (1.0 - probe.a) * distant;
+}
+
+// envLighting with local reflections at world position `position`.
+vec3 envLightingAt(vec3 position, vec3 n, vec3 toEye, vec3 diffuseAlbedo, vec3 f0, float alpha, int ndf) {
+    float nDotV = clamp(dot(n, toEye), 1e-4, 1.0);
+    vec3 r = reflect(-toEye, n);
+    vec2 ab = envBrdf(nDotV, alpha, ndf);
+    vec3 specularAlbedo = f0 * ab.x + ab.y;
+    vec3 specular = envPrefilteredAt(position, r, alpha, ndf) * specularAlbedo;
     vec3 diffuse = diffuseAlbedo * (1.0 - specularAlbedo) * envDiffuse(n);
     return diffuse + specular;
 }

@@ -6,6 +6,8 @@
 // Deviation: lod bias +0.5 instead of the paper's +1. Worst relative error against CPU quadrature of the same
 // integral (tests/environment_test.cpp, synthetic map) was 3.0% with bias 0 (sample-pattern noise), 2.6% with
 // +0.5, 5.6% with +1 (blurs wider than the narrow lobes of levels 1-2).
+// All four channels are filtered: a reflection probe's alpha is its coverage by geometry (sky texels 0), which the
+// lighting pass blends with the distant environment (render/reflection_probes.h); the environment's alpha is 1.
 #include "env/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -17,6 +19,7 @@ layout(location = 2) uniform int u_ndf;           // also the target layer
 layout(location = 3) uniform int u_sampleCount;
 layout(location = 4) uniform int u_sourceSize;    // face size of source level 0
 layout(location = 5) uniform float u_maxSourceLod;
+layout(location = 6) uniform int u_firstLayer;   // layer of face 0 of NDF 0 (probes: 12 per probe)
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
@@ -24,7 +27,7 @@ void main() {
     vec3 n = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
     mat3 frame = frameAround(n);
     float texelSolidAngle = 4.0 * PI / (6.0 * float(u_sourceSize * u_sourceSize));
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int i = 0; i < u_sampleCount; ++i) {
         vec3 hLocal = sampleHalfVector(hammersley(uint(i), uint(u_sampleCount)), u_alpha, u_ndf);
@@ -35,9 +38,9 @@ void main() {
         float pdf = D_smooth(hLocal, u_alpha, u_ndf) * 0.25;
         float sampleSolidAngle = 1.0 / (float(u_sampleCount) * max(pdf, 1e-8));
         float lod = clamp(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 0.5, 0.0, u_maxSourceLod);
-        sum += textureLod(u_source, l, lod).rgb * nDotL;
+        sum += textureLod(u_source, l, lod) * nDotL;
         weight += nDotL;
     }
-    vec3 radiance = weight > 0.0 ? sum / weight : vec3(0.0);
-    imageStore(u_target, ivec3(id.xy, u_ndf * 6 + id.z), vec4(radiance, 1.0));
+    vec4 radiance = weight > 0.0 ? sum / weight : vec4(0.0);
+    imageStore(u_target, ivec3(id.xy, u_firstLayer + u_ndf * 6 + id.z), radiance);
 }

@@ -69,8 +69,9 @@ vec3 iblSpecularEstimate(GlintPixel glint, GlintSurface s, vec3 wo, mat3 worldTo
     float G = G1_smooth(wi, s.alpha, s.ndf) * G1_smooth(wo, s.alpha, s.ndf);
     vec3 F = F_Schlick(f0, woDotH);
     vec3 weight = D * G * F * (woDotH / (wo.z * pdfH));
-    // worldToShading is orthonormal: its transpose takes the direction back to world space.
-    return weight * envRadiance(transpose(worldToShading) * wi, 0.0);
+    // worldToShading is orthonormal: its transpose takes the direction back to world space. The reflection probe
+    // at the shaded point (if any) replaces the distant map where it saw geometry.
+    return weight * envRadianceAt(s.position, transpose(worldToShading) * wi);
 }
 
 // One diffuse estimate: cosine-weighted sampling makes (albedo / pi) cos / pdf = albedo.

@@ -93,5 +93,7 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
         return envDiffuse(s.n) * diffuseAlbedo;
     }
 #endif
-    return envLighting(s.n, toEyeWorld, diffuseAlbedo, f0, s.alpha, s.ndf);
+    // Non-glinty pixels: the split sum with local reflections. The glint table above is prefiltered from the
+    // distant map only (a per-probe table is not built).
+    return envLightingAt(s.position, s.n, toEyeWorld, diffuseAlbedo, f0, s.alpha, s.ndf);
 }

@@ -2,6 +2,7 @@
 
 #include "gl/pipeline_state.h"
 #include "common/bindings.glsl"
+#include "render/reflection_probes.h"
 
 namespace glimmer {
 
@@ -26,9 +27,10 @@ LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const std::s
 
 void LightingPass::execute(const FrameContext& frame) {
     const bool glintTargets = findGlintMethod(frame.settings.method).glintPostPass;
-    gl::PipelineState state = gl::fullscreenState(
-        glintTargets ? frame.targets.lightingGlintFramebuffer() : frame.targets.hdrFramebuffer(), frame.width,
-        frame.height);
+    gl::PipelineState state = gl::fullscreenState(glintTargets       ? frame.targets.lightingGlintFramebuffer()
+                                                  : frame.temporalAa ? frame.targets.lightingGlintPartFramebuffer()
+                                                                     : frame.targets.hdrFramebuffer(),
+                                                  frame.width, frame.height);
     if (frame.blendSample) {
         // Running mean: mean_k = estimate / (k + 1) + mean_{k-1} * k / (k + 1). Only the HDR target blends (the
         // glint targets hold this sample's glints; the method's post pass adds them with the same weight).
@@ -40,9 +42,16 @@ void LightingPass::execute(const FrameContext& frame) {
     if (frame.methodResources) frame.methodResources->bind();
     if (frame.iblResources) frame.iblResources->bind();
     frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
+    if (frame.probes) frame.probes->bind(frame.probesActive);
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
         glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
+    if (!frame.ambientOcclusion && !unoccluded_) {
+        unoccluded_ = gl::createTexture2D(GL_RGBA16F, 1, 1);
+        const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        glClearTexImage(unoccluded_.id(), 0, GL_RGBA, GL_FLOAT, one);
+    }
+    glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.ambientOcclusion ? frame.ambientOcclusion : unoccluded_.id());
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

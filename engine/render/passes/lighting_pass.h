@@ -1,6 +1,7 @@
 // Lighting pass: one full-screen triangle reading the G-buffer, the environment and the resources of the glint
 // method and the IBL mode (shaders/lighting.frag), writing linear HDR radiance. A method with a glint post pass
-// (GlintMethod::glintPostPass) also writes its glint targets (FrameTargets::lightingGlintFramebuffer()). Later
+// (GlintMethod::glintPostPass) also writes its glint targets (FrameTargets::lightingGlintFramebuffer()); with TAA it
+// also writes the glint part (FrameTargets::glintPartTexture(), attachment 3). Later
 // samples of an accumulated view blend into the running mean (draw buffer 0 only).
 #pragma once
 #include <filesystem>
@@ -21,6 +22,7 @@ public:
 
 private:
     gl::Program program_;
+    gl::Texture unoccluded_;   // 1 x 1 white: frames without an AO texture (probe captures) are not occluded
 };
 
 }  // namespace glimmer

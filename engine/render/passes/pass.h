@@ -18,6 +18,8 @@
 
 namespace glimmer {
 
+class ReflectionProbes;
+
 // Everything a pass may read in one frame. The frame's uniform blocks (frame, method and IBL parameters) are
 // bound before the first pass (shaders/common/bindings.glsl).
 struct FrameContext {
@@ -35,7 +37,14 @@ struct FrameContext {
     bool blendSample;
     float blendWeight;
     GLuint emptyVao;                         // for full-screen triangles
-    glm::mat4 viewProjection;                // of this frame (geometry passes cull against it)
+    glm::mat4 viewProjection;                // of this frame (geometry passes cull against it; jittered with TAA)
+    // TAA (docs/image.md): this frame is jittered and resolved; the lighting pass writes the glint part.
+    bool temporalAa = false;
+    // Reflection probes bound by the lighting pass; probesActive false (probe captures, IBL modes that do not
+    // read probes, probes.enabled = 0) binds none, so the distant environment alone lights the frame.
+    const ReflectionProbes* probes = nullptr;
+    bool probesActive = false;
+    GLuint ambientOcclusion = 0;             // factor on the environment term (AmbientOcclusion::occlusionTexture)
 };
 
 class Pass {

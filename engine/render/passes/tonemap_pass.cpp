@@ -5,13 +5,22 @@
 
 namespace glimmer {
 
-TonemapPass::TonemapPass(const std::filesystem::path& shaderRoot)
-    : program_(shaderRoot, {"tonemap", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "tonemap.frag"}}}) {}
+TonemapPass::TonemapPass(const std::filesystem::path& shaderRoot, const BloomPass& bloom, const ExposurePass& exposure)
+    : program_(shaderRoot, {"tonemap", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "tonemap.frag"}}}),
+      bloom_(bloom),
+      exposure_(exposure) {}
 
 void TonemapPass::execute(const FrameContext& frame) {
     gl::fullscreenState(frame.targets.displayFramebuffer(), frame.width, frame.height).apply();
     program_.use();
+    const bool bloom = BloomPass::wanted(frame.settings) && bloom_.result();
     glBindTextureUnit(UNIT_TONEMAP_HDR, frame.targets.hdrTexture());
+    glBindTextureUnit(UNIT_TONEMAP_BLOOM, bloom ? bloom_.result() : frame.targets.hdrTexture());
+    exposure_.bindState();
+    glProgramUniform1i(program_.id(), 0, int(frame.settings.common_("tonemap")));
+    glProgramUniform1f(program_.id(), 1, bloom ? frame.settings.common_("bloom.strength") : 0.0f);
+    glProgramUniform1i(program_.id(), 2, ExposurePass::wanted(frame.settings) ? 1 : 0);
+    glProgramUniform1f(program_.id(), 3, bloom_.levelScale());
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -1,8 +1,9 @@
-#include "reference/deliot2023_probe.h"
+#include "glints/method_probe.h"
 #include "common/bindings.glsl"
 
 #include "core/files.h"
 #include "gl/handles.h"
+#include "render/shader_interface.h"
 
 namespace glimmer {
 
@@ -11,7 +12,7 @@ GlintMethodProbe::GlintMethodProbe(const std::string& methodId, const ParamValue
     : method_(findGlintMethod(methodId)), values_(values) {
     gl::ProgramDesc desc;
     desc.name = "probe/" + method_.id;
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023_probe.comp"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/method_probe.comp"}};
     desc.defines = {method_.define};
     desc.preamble = methodParamsGlsl(method_);
     desc.includeMacros["GLINT_METHOD_FILE"] = method_.shaderFile;
@@ -34,6 +35,12 @@ std::vector<GlintProbeOutput> GlintMethodProbe::run(const std::vector<GlintProbe
     gl::Buffer paramBuffer = gl::createBuffer(GLsizeiptr(params.size() * sizeof(float)), params.data(), 0);
     gl::Buffer inBuffer = gl::createBuffer(GLsizeiptr(packed.size() * sizeof(glm::vec4)), packed.data(), 0);
     gl::Buffer outBuffer = gl::createBuffer(GLsizeiptr(packed.size() * sizeof(glm::vec4)), nullptr, 0);
+    // A frame for methods that read it: identity camera at the origin, a 1 x 1 viewport.
+    FrameUniforms frame{};
+    frame.view = frame.projection = frame.viewProjection = frame.inverseViewProjection = glm::mat4(1.0f);
+    frame.viewport = {1, 1, 0, 0};
+    gl::Buffer frameBuffer = gl::createBuffer(GLsizeiptr(sizeof(frame)), &frame, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, paramBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST - 1, inBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST, outBuffer.id());

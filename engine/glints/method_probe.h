@@ -1,6 +1,7 @@
 // Runs a glint method's shader code (glintSetup + glintD, footprint and extra AOVs) on synthetic surfaces through
-// a compute shader (shaders/glints/deliot2023_probe.comp), so tests can check the real GLSL with controlled
-// footprints and half vectors. Needs a current GL 4.5 context.
+// a compute shader (shaders/glints/method_probe.comp), so tests and check-method (glints/method_checks.h) can
+// check the real GLSL of any method, built-in or user, with controlled footprints and half vectors. Needs a
+// current GL 4.5 context.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -37,7 +38,7 @@ public:
     std::vector<GlintProbeOutput> run(const std::vector<GlintProbeInput>& inputs);
 
 private:
-    const GlintMethod& method_;
+    GlintMethod method_;   // a copy: registering a user method may move the table's entries
     ParamValues values_;
     gl::Program program_;
     std::unique_ptr<GlintMethodResources> resources_;

@@ -1,9 +1,11 @@
 // Test probe: runs a glint method's glintSetup + glintD on synthetic surfaces (UV, derivatives, half vector) and
-// writes D, the footprint AOV and the extra AOV. Used by tests/deliot2023_test.cpp and tests/zirr2016_test.cpp
-// (engine/glints/deliot2023_probe.cpp) to check the real shader code with controlled footprints.
+// writes D, the footprint AOV and the extra AOV. Used by check-method (engine/glints/method_checks.cpp) and the
+// tests (engine/glints/method_probe.cpp) to check the real shader code with controlled footprints.
 #include "common/bindings.glsl"
 layout(local_size_x = 64) in;
 #include "common/constants.glsl"
+// Methods may read the frame (kemppinen2025's triplanar mode); the probe binds an identity camera.
+#include "common/frame.glsl"
 #include "common/brdf.glsl"
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"

@@ -1,0 +1,42 @@
+#include "render/passes/gtao_pass.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "common/bindings.glsl"
+#include "gl/pipeline_state.h"
+
+namespace glimmer {
+
+GtaoPass::GtaoPass(const std::filesystem::path& shaderRoot, const AmbientOcclusion& ao)
+    : program_(shaderRoot, {"gtao", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "ao/gtao.frag"}}}),
+      ao_(ao) {
+    glCreateSamplers(1, &linearDepthSampler_);
+    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+}
+
+GtaoPass::~GtaoPass() { glDeleteSamplers(1, &linearDepthSampler_); }
+
+bool GtaoPass::runs(const FrameContext& frame) const {
+    return ao_.settings().enabled && ao_.settings().screen && !frame.blendSample;
+}
+
+void GtaoPass::execute(const FrameContext& frame) {
+    gl::fullscreenState(ao_.rawFramebuffer(), frame.width, frame.height).apply();
+    program_.use();
+    const AoSettings& s = ao_.settings();
+    const glm::mat4 inverseProjection = glm::inverse(frame.camera.projection(float(frame.width) / float(frame.height)));
+    glProgramUniformMatrix4fv(program_.id(), 0, 1, GL_FALSE, glm::value_ptr(inverseProjection));
+    glProgramUniform4f(program_.id(), 1, s.radius, float(s.slices), float(s.steps), s.falloff);
+    glBindTextureUnit(UNIT_AO_DEPTH, frame.targets.depthTexture());
+    glBindTextureUnit(UNIT_AO_NORMAL, frame.targets.gbufferTexture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
+    glBindSampler(UNIT_AO_DEPTH, linearDepthSampler_);
+    glBindVertexArray(frame.emptyVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindSampler(UNIT_AO_DEPTH, 0);   // later passes read this unit with the texture's own state
+}
+
+}  // namespace glimmer

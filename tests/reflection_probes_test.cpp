@@ -1,0 +1,238 @@
+// Reflection probes (render/reflection_probes.h): a mirror sphere next to a coloured wall reflects the wall on
+// the side facing it and the sky on the far side; the white furnace holds with probes on; a second frame with
+// nothing changed does not re-capture; the proxy box fit (CPU).
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "core/files.h"
+#include "platform/context.h"
+#include "render/gpu_scene.h"
+#include "render/reflection_probe_placement.h"
+#include "render/renderer.h"
+#include "scene/builtin_scenes.h"
+#include "scene/mesh_builder.h"
+
+namespace glimmer {
+namespace {
+
+constexpr int kSize = 128;
+
+struct ProbeRig {
+    std::unique_ptr<GLContext> context = createHeadlessContext(Backend::Egl);
+    Scene scene;
+    std::unique_ptr<GpuScene> gpu;
+    std::unique_ptr<Renderer> renderer;
+
+    void finish() {
+        Camera camera;
+        camera.name = "front";
+        camera.position = {0.0f, 0.0f, 4.0f};
+        camera.target = {0.0f, 0.0f, 0.0f};
+        camera.verticalFovDegrees = 45.0f;
+        scene.cameras = {camera};
+        gpu = std::make_unique<GpuScene>(scene);
+        renderer = std::make_unique<Renderer>(defaultShaderDir(), RenderSettings{});
+    }
+    ~ProbeRig() {
+        context->makeCurrent();
+        renderer.reset();
+        gpu.reset();
+    }
+    std::vector<float> render(const std::vector<std::string>& sets, bool measure = false) {
+        RenderSettings settings;
+        settings.apply("probes.face_size=64");
+        // Ambient occlusion off: it darkens the environment term (probe reflections included) beside the wall,
+        // which these tests of the probes themselves do not model.
+        settings.apply("ao.enabled=0");
+        for (const std::string& s : sets) settings.apply(s);
+        gpu->updateMaterialsAndLights(scene);
+        renderer->setSettings(settings);
+        renderer->render(scene, *gpu, scene.cameras[0], kSize, kSize, measure);
+        return renderer->readHdr();
+    }
+    // The pixel that shows world point p (GL rows, bottom first).
+    glm::ivec2 pixelOf(glm::vec3 p) const {
+        const Camera& c = scene.cameras[0];
+        glm::vec4 clip = c.projection(1.0f) * c.view() * glm::vec4(p, 1.0f);
+        glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        return glm::ivec2((ndc * 0.5f + 0.5f) * float(kSize));
+    }
+};
+
+glm::vec3 pixel(const std::vector<float>& hdr, glm::ivec2 p) {
+    const float* v = &hdr[(size_t(p.y) * kSize + size_t(p.x)) * 4];
+    return {v[0], v[1], v[2]};
+}
+
+// A mirror sphere (metal, f0 = 1, alpha 0.02) at the origin, a red Lambertian wall at x = 2.5 facing it lit by the
+// sun, a grey constant sky. Seen from +z, the sphere point with normal (1, 0, 1)/sqrt 2 mirrors the view ray into
+// +x, onto the wall; the point with normal (-1, 0, 1)/sqrt 2 mirrors it into -x, the open sky.
+void buildWallScene(Scene& scene) {
+    scene.name = "probe-wall";
+    scene.environment = "constant:0.3,0.3,0.3";
+    scene.meshes.push_back(makeUvSphere(1.0f, 96, 48));
+    MeshBuilder wall("wall");
+    wall.quad({2.5f, -5.0f, -5.0f}, {2.5f, 5.0f, -5.0f}, {2.5f, 5.0f, 5.0f}, {2.5f, -5.0f, 5.0f}, {-1, 0, 0}, {});
+    scene.meshes.push_back(wall.finish());
+    Material mirror;
+    mirror.baseColor = glm::vec4(1.0f);
+    mirror.metallic = 1.0f;
+    mirror.alpha = 0.02f;
+    Material red;
+    red.baseColor = glm::vec4(0.8f, 0.1f, 0.1f, 1.0f);
+    red.metallic = 0.0f;
+    red.alpha = 0.8f;
+    scene.materials = {mirror, red};
+    scene.instances = {{0, 0, glm::mat4(1.0f)}, {1, 1, glm::mat4(1.0f)}};
+    scene.lights.push_back({LightType::Directional, glm::normalize(glm::vec3(-1.0f, 0.5f, 0.3f)), {1, 1, 1}, 2.0f});
+}
+
+TEST(ReflectionProbes, MirrorSphereReflectsTheWallOnTheSideFacingIt) {
+    ProbeRig rig;
+    buildWallScene(rig.scene);
+    rig.finish();
+    const glm::ivec2 nearSide = rig.pixelOf(glm::normalize(glm::vec3(1, 0, 1)));
+    const glm::ivec2 farSide = rig.pixelOf(glm::normalize(glm::vec3(-1, 0, 1)));
+
+    std::vector<float> with = rig.render({});
+    ASSERT_EQ(rig.renderer->probes().probes().size(), 1u);
+    std::vector<float> without = rig.render({"probes.enabled=0"});
+    // The wall's own radiance, seen head-on from the sphere's side (uniform: flat Lambert under a directional light
+    // and a constant sky).
+    rig.scene.cameras[0].position = {1.5f, 0.0f, 0.0f};
+    rig.scene.cameras[0].target = {2.5f, 0.0f, 0.0f};
+    std::vector<float> wallView = rig.render({"probes.enabled=0"});
+    const glm::vec3 wall = pixel(wallView, {kSize / 2, kSize / 2});
+    ASSERT_GT(wall.x, 4.0f * wall.y);
+
+    glm::vec3 nearWith = pixel(with, nearSide), farWith = pixel(with, farSide);
+    glm::vec3 nearWithout = pixel(without, nearSide), farWithout = pixel(without, farSide);
+    // Facing the wall: its red (f0 = 1 and a near-mirror lobe: A + B ~ 1), within 10% (probe resolution 64,
+    // the lobe blends levels 0 and 1 of the prefiltered probe).
+    EXPECT_GT(nearWith.x, 3.0f * nearWith.y) << nearWith.x << " " << nearWith.y;
+    EXPECT_NEAR(nearWith.x, wall.x, 0.1f * wall.x);
+    EXPECT_NEAR(nearWith.y, wall.y, 0.1f * wall.x);
+    // The far side sees only the grey sky (its probe texels are sky, coverage 0): grey, as without probes.
+    EXPECT_NEAR(farWith.x, farWith.y, 0.02f * farWith.y);
+    EXPECT_NEAR(farWith.x, farWithout.x, 0.01f * farWithout.x);
+    // Control: without probes the near side shows the grey sky too, so the checks above can fail.
+    EXPECT_NEAR(nearWithout.x, nearWithout.y, 0.02f * nearWithout.y);
+}
+
+// Two spheres under a constant sky and no lights: a white metal one (its probe sees the other) and a white
+// dielectric one (a white furnace: it returns exactly the sky's radiance). The probe then sees L in every
+// direction, so with probes on every pixel matches the render without them.
+TEST(ReflectionProbes, WhiteFurnaceIsUnchangedWithProbes) {
+    ProbeRig rig;
+    rig.scene.name = "probe-furnace";
+    rig.scene.environment = "constant:0.6,0.8,1.0";
+    rig.scene.meshes.push_back(makeUvSphere(1.0f, 96, 48));
+    Material metal;
+    metal.baseColor = glm::vec4(1.0f);
+    metal.metallic = 1.0f;
+    metal.alpha = 0.1f;
+    Material white;
+    white.baseColor = glm::vec4(1.0f);
+    white.metallic = 0.0f;
+    white.alpha = 0.3f;
+    rig.scene.materials = {metal, white};
+    rig.scene.instances = {{0, 0, glm::translate(glm::mat4(1.0f), glm::vec3(-1.1f, 0, 0))},
+                           {0, 1, glm::translate(glm::mat4(1.0f), glm::vec3(1.1f, 0, 0))}};
+    rig.finish();
+    std::vector<float> with = rig.render({});
+    ASSERT_EQ(rig.renderer->probes().probes().size(), 1u);
+    // The other sphere covers ~5% of the sphere of directions (3.4% of the cube texels, measured).
+    EXPECT_GT(rig.renderer->probes().probes()[0].coverage, 0.02f);
+    std::vector<float> without = rig.render({"probes.enabled=0"});
+    double worst = 0.0;
+    for (size_t i = 0; i < with.size(); i += 4)
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(with[i + size_t(c)]));
+            worst = std::max(worst, std::abs(double(with[i + size_t(c)]) - without[i + size_t(c)]) /
+                                        std::max(double(without[i + size_t(c)]), 1e-3));
+        }
+    EXPECT_LT(worst, 0.02);
+}
+
+TEST(ReflectionProbes, NotRecapturedWhenNothingChanged) {
+    ProbeRig rig;
+    buildWallScene(rig.scene);
+    rig.finish();
+    auto ran = [&](const char* name) {
+        for (const PassTiming& t : rig.renderer->passTimings())
+            if (t.name == name) return true;
+        return false;
+    };
+    rig.render({}, true);
+    EXPECT_EQ(rig.renderer->probes().captures(), 1);
+    EXPECT_TRUE(ran("probes.capture"));
+    EXPECT_TRUE(ran("probes.prefilter"));
+    rig.render({}, true);
+    EXPECT_EQ(rig.renderer->probes().captures(), 1);
+    EXPECT_FALSE(ran("probes.capture"));
+    // A moved wall is a change: captured again.
+    rig.scene.instances[1].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0));
+    rig.render({}, true);
+    EXPECT_EQ(rig.renderer->probes().captures(), 2);
+    EXPECT_TRUE(ran("probes.capture"));
+}
+
+// CPU: the proxy box takes the median hit distance of each face, the scene bounds where the face saw mostly sky,
+// and never cuts into the influence box.
+TEST(ReflectionProbePlacement, ProxyBoxFitsTheMedianHitOfEachFace) {
+    const float inf = std::numeric_limits<float>::infinity();
+    std::array<std::vector<float>, 6> d;
+    d[0] = {2.0f, 2.5f, 3.0f, 9.0f};   // +x: median of 4 hits (upper middle) = 3
+    d[1] = {inf, inf, inf, 1.0f};      // -x: mostly sky -> limits
+    d[2] = {0.5f, 0.5f, 0.5f, inf};    // +y: 0.5, but the influence box reaches 1 -> 1
+    d[3] = {1.5f, 1.5f, 1.5f, 1.5f};   // -y: floor 1.5 below
+    d[4] = {inf, inf, inf, inf};       // +z: sky
+    d[5] = {4.0f, 4.0f, inf, inf};     // -z: half sky -> limits
+    Box limits{{-10, -10, -10}, {10, 10, 10}};
+    Box influence{{-0.5f, -0.5f, -0.5f}, {0.5f, 1.0f, 0.5f}};
+    Box box = fitProxyBox({0, 0, 0}, d, limits, influence);
+    EXPECT_FLOAT_EQ(box.max.x, 3.0f);
+    EXPECT_FLOAT_EQ(box.min.x, -10.0f);
+    EXPECT_FLOAT_EQ(box.max.y, 1.0f);
+    EXPECT_FLOAT_EQ(box.min.y, -1.5f);
+    EXPECT_FLOAT_EQ(box.max.z, 10.0f);
+    EXPECT_FLOAT_EQ(box.min.z, -10.0f);
+}
+
+TEST(ReflectionProbePlacement, OneProbePerMetallicInstance) {
+    Scene scene;
+    scene.meshes.push_back(makeUvSphere(1.0f, 32, 16));
+    Material metal, stone;
+    metal.metallic = 0.8f;
+    stone.metallic = 0.0f;
+    scene.materials = {metal, stone};
+    scene.instances = {{0, 1, glm::mat4(1.0f)},
+                       {0, 0, glm::translate(glm::mat4(1.0f), glm::vec3(3, 0, 0))},
+                       {0, 0, glm::translate(glm::mat4(1.0f), glm::vec3(-3, 0, 0))}};
+    std::vector<ProbePlacement> probes = placeReflectionProbes(scene, 8);
+    ASSERT_EQ(probes.size(), 2u);
+    EXPECT_EQ(probes[0].excludedInstance, 1);
+    EXPECT_NEAR(glm::length(probes[0].position - glm::vec3(3, 0, 0)), 0.0f, 1e-3f);   // closed: at the centroid
+    EXPECT_TRUE(probes[0].influence.contains({3.0f, 1.0f, 0.0f}));    // the object's surface is inside
+    EXPECT_FALSE(probes[0].influence.contains({0.0f, 0.0f, 0.0f}));   // the stone sphere is not
+    EXPECT_EQ(placeReflectionProbes(scene, 1).size(), 1u);
+
+    // A flat metal plate facing +x (a relief on a wall): captured in front of it, not on its surface.
+    MeshBuilder plate("plate");
+    plate.quad({0, -1, -1}, {0, 1, -1}, {0, 1, 1}, {0, -1, 1}, {1, 0, 0}, {});
+    scene.meshes.push_back(plate.finish());
+    scene.instances = {{1, 0, glm::mat4(1.0f)}};
+    EXPECT_TRUE(placeReflectionProbes(scene, 8).empty());   // alone: it would see only the sky
+    scene.instances.push_back({0, 1, glm::translate(glm::mat4(1.0f), glm::vec3(5, 0, 0))});
+    probes = placeReflectionProbes(scene, 8);
+    ASSERT_EQ(probes.size(), 1u);
+    EXPECT_NEAR(probes[0].position.x, probes[0].fade, 1e-3f);
+    EXPECT_TRUE(probes[0].influence.contains(probes[0].position));
+}
+
+}  // namespace
+}  // namespace glimmer
