@@ -157,7 +157,11 @@ TEST(GlintMapping, FormulasMatchHandValues) {
     m.glint.color = {0.2f, 0.4f, 0.6f};
     m.surfacePerUvArea = 4.0f;
     ParamValues d = materialParams(findGlintMethod("deliot2023"), m, {});
-    EXPECT_NEAR(d["log_density"], 15.201805, 1e-4);            // ln(4e6)
+    // ln(4e6) - sigma^2 / 2 with the default density_randomization sigma = 2: the log-median of the per-vertex
+    // log-normal count whose mean is 4e6 (a sigma given with --set moves it: 15.2018 - 0.5).
+    EXPECT_NEAR(d["log_density"], 13.201805, 1e-4);
+    EXPECT_NEAR(materialParams(findGlintMethod("deliot2023"), m, {{"density_randomization", 1.0f}})["log_density"],
+                14.701805, 1e-4);
     EXPECT_NEAR(d["microfacet_roughness"], 0.0025, 1e-7);       // (0.015 / 0.3)^2
     EXPECT_FLOAT_EQ(d["screen_space_scale"], 1.5f);             // unmapped: default
     ParamValues z = materialParams(findGlintMethod("zirr2016"), m, {});
@@ -172,6 +176,9 @@ TEST(GlintMapping, FormulasMatchHandValues) {
     EXPECT_NEAR(w["particles"], 4e6, 1.0);
     EXPECT_NEAR(w["gamma"], 1.7188733, 1e-5);                    // 2 x 0.015 rad in degrees
     EXPECT_FLOAT_EQ(w["roughness"], 0.3f);
+    EXPECT_FLOAT_EQ(w["ndf"], 0.0f);                             // GGX (the material's)
+    m.ndf = NdfType::Beckmann;
+    EXPECT_FLOAT_EQ(materialParams(findGlintMethod("wang2020"), m, {})["ndf"], 1.0f);
     EXPECT_FLOAT_EQ(w["color_g"], 0.4f);
 }
 
@@ -188,7 +195,7 @@ TEST(GlintMapping, SetOverridesTheMappedValueAndRangesClamp) {
     EXPECT_FLOAT_EQ(materialParams(findGlintMethod("deliot2023"), m, settings.methodValues("deliot2023"))["log_density"], 11.0f);
     // --list-params says which parameters are mapped and that --set overrides them.
     std::string text = describeParams();
-    EXPECT_NE(text.find("per material: log_density = ln(density_per_uv)"), std::string::npos);
+    EXPECT_NE(text.find("per material: log_density = ln(density_per_uv) - density_randomization^2/2"), std::string::npos);
     EXPECT_NE(text.find("per material: microfacet_roughness = (angular_size)^2 alpha^-2"), std::string::npos);
 }
 
@@ -201,7 +208,7 @@ TEST(GlintMapping, SharedDataFollowTheDensestGlintyMaterial) {
     plain.glint.density = 1e9f;   // not glinty: ignored
     ParamValues shared = sharedParams(findGlintMethod("wang2020"), {sparse, plain, dense}, {});
     EXPECT_FLOAT_EQ(shared["particles"], 1e6f);
-    EXPECT_FLOAT_EQ(sharedParams(findGlintMethod("deliot2023"), {sparse, dense}, {})["log_density"], std::log(1e4f));
+    EXPECT_FLOAT_EQ(sharedParams(findGlintMethod("deliot2023"), {sparse, dense}, {})["log_density"], std::log(1e4f) - 2.0f);
 }
 
 TEST(GlintLights, SpotFalloffAndRangeWindowFollowKhrLightsPunctual) {

@@ -41,7 +41,7 @@ param: roughness = 0.01 in [0.001, 1] log: micro roughness
 param: steps = 4 in [1, 16] int: loop steps
 param: blend = smooth in {linear, smooth, cubic}: how cells blend
 converge:  log_density=40, blend=linear
-map: log_density = ln(density_per_uv)
+map: log_density = ln(density_per_uv) - steps^2/2
 map: roughness = 2 (angular_size)^2 alpha^-2
 */
 float glintD() { return 1.0; }
@@ -70,17 +70,23 @@ TEST(UserMethodHeader, GoodHeaderGivesTheTableEntry) {
     EXPECT_EQ(m.convergence.at("blend"), 0.0f);
     // map lines: the glint material's quantities, in the form --list-params prints.
     ASSERT_EQ(m.materialMapping.size(), 2u);
-    EXPECT_EQ(mappingFormula(m.materialMapping[0]), "log_density = ln(density_per_uv)");
+    EXPECT_EQ(mappingFormula(m.materialMapping[0]), "log_density = ln(density_per_uv) - steps^2/2");
     EXPECT_TRUE(m.materialMapping[0].log);
+    EXPECT_EQ(m.materialMapping[0].minusHalfSquareOf, "steps");
     EXPECT_EQ(m.materialMapping[1].quantity, GlintQuantity::AngularSize);
     EXPECT_EQ(m.materialMapping[1].scale, 2.0f);
     EXPECT_EQ(m.materialMapping[1].power, 2.0f);
     EXPECT_EQ(m.materialMapping[1].alphaPower, -2.0f);
     EXPECT_EQ(mappingFormula(m.materialMapping[1]), "roughness = 2 (angular_size)^2 alpha^-2");
-    // The same P_<NAME> block as the built-ins.
+    // The same P_<NAME> block as the built-ins (outside the lighting pass P_ reads the shared values PS_).
     std::string glsl = methodParamsGlsl(m);
-    EXPECT_NE(glsl.find("#define P_LOG_DENSITY u_methodParams[0].x"), std::string::npos) << glsl;
-    EXPECT_NE(glsl.find("#define P_BLEND u_methodParams[0].w"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define PS_LOG_DENSITY u_methodParams[0].x"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define P_LOG_DENSITY PS_LOG_DENSITY"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define PS_BLEND u_methodParams[0].w"), std::string::npos) << glsl;
+    // In the lighting pass P_ reads the pixel's material's row (per-material parameters, glint_mapping.h).
+    std::string lighting = methodParamsGlsl(m, true);
+    EXPECT_NE(lighting.find("#define P_LOG_DENSITY u_materialMethodParams[g_glintMaterial * 16 + 0].x"),
+              std::string::npos) << lighting;
     // Defaults only: title falls back to the name, no resources.
     GlintMethod small = parseUserMethodHeader("/* glimmer-method\nname: tiny\ncitation: x\n*/\n", "tiny.glsl");
     EXPECT_EQ(small.title, "tiny");
@@ -129,6 +135,8 @@ TEST(UserMethodHeader, EveryBadHeaderIsAnErrorNamingItsLine) {
          "mapped twice"},
         {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = ln(alpha\n*/\n", 5,
          "closing ')'"},
+        {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = ln(alpha) - s^2/2\n*/\n", 5,
+         "'s' (in '- NAME^2/2') is not a parameter"},
         {"/* glimmer-method\nname: a\ncitation: c\nresources: nowhere\n*/\n", 4, "not a built-in method"},
         {"/* glimmer-method\nname: a\ncitation: c\nresources: zirr2016\n*/\n", 4, "has no GPU resources"},
         {"/* glimmer-method\nname: a\ncitation: c */ float x;\n", 3, "code after the header"},
@@ -160,7 +168,7 @@ TEST(UserMethodHeader, ExampleRegistersAndIsListedLikeABuiltIn) {
     glinty.glint.density = 4e6f;
     glinty.glint.angularSize = 0.02f;
     const GlintMethod& builtin = findGlintMethod("deliot2023");
-    for (const char* name : {"log_density", "microfacet_roughness"})
+    for (const char* name : {"log_density", "microfacet_roughness"})   // log_density with its - sigma^2/2
         EXPECT_FLOAT_EQ(materialParams(m, glinty, {}).at(name), materialParams(builtin, glinty, {}).at(name)) << name;
     std::string listing = describeParams();
     EXPECT_NE(listing.find("deliot2023_smoothstep.angular_blend"), std::string::npos);

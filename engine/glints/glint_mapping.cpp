@@ -18,6 +18,7 @@ const char* glintQuantityName(GlintQuantity q) {
         case GlintQuantity::ColorR: return "color.r";
         case GlintQuantity::ColorG: return "color.g";
         case GlintQuantity::ColorB: return "color.b";
+        case GlintQuantity::Ndf: return "ndf";
     }
     return "?";
 }
@@ -32,6 +33,7 @@ float glintQuantity(const Material& m, GlintQuantity q) {
         case GlintQuantity::ColorR: return m.glint.color.x;
         case GlintQuantity::ColorG: return m.glint.color.y;
         case GlintQuantity::ColorB: return m.glint.color.z;
+        case GlintQuantity::Ndf: return float(int(m.ndf));
     }
     return 0.0f;
 }
@@ -56,6 +58,7 @@ std::string mappingFormula(const ParamMapping& mapping) {
     if (mapping.scale != 1.0f) term = number(mapping.scale) + " " + term;
     if (mapping.alphaPower != 0.0f) term += " alpha^" + number(mapping.alphaPower);
     if (mapping.log) term = "ln(" + term + ")";
+    if (!mapping.minusHalfSquareOf.empty()) term += " - " + mapping.minusHalfSquareOf + "^2/2";
     return mapping.param + " = " + term;
 }
 
@@ -73,6 +76,17 @@ ParamValues materialParams(const GlintMethod& method, const Material& m, const P
                 v = std::isfinite(mapped) ? std::clamp(mapped, spec.minValue, spec.maxValue) : spec.defaultValue;
             }
         values[spec.name] = v;
+    }
+    // Log-normal offsets read the other parameter's final value (override, mapped or default).
+    for (const ParamMapping& mapping : method.materialMapping) {
+        if (mapping.minusHalfSquareOf.empty() || overrides.count(mapping.param)) continue;
+        auto sigma = values.find(mapping.minusHalfSquareOf);
+        if (sigma == values.end()) continue;
+        for (const ParamSpec& spec : method.params)
+            if (spec.name == mapping.param) {
+                float mapped = mappedValue(mapping, m) - 0.5f * sigma->second * sigma->second;
+                values[spec.name] = std::isfinite(mapped) ? std::clamp(mapped, spec.minValue, spec.maxValue) : spec.defaultValue;
+            }
     }
     return values;
 }

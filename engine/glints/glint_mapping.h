@@ -23,10 +23,11 @@ enum class GlintQuantity {
     ColorR,
     ColorG,
     ColorB,
+    Ndf,              // the material's base NDF as its NdfType index (0 GGX, 1 Beckmann): for an enumeration
 };
 
-// value = scale x q^power x alpha^alphaPower, then ln(value) when `log` (e.g. deliot2023's log density), then
-// clamped into the parameter's range (so a material outside a method's range renders at its nearest value).
+// value = scale x q^power x alpha^alphaPower, then ln(value) when `log` (e.g. deliot2023's log density), minus
+// half the square of parameter `minusHalfSquareOf` when set, then clamped into the parameter's range (so a material outside a method's range renders at its nearest value).
 struct ParamMapping {
     std::string param;
     GlintQuantity quantity = GlintQuantity::Density;
@@ -35,6 +36,9 @@ struct ParamMapping {
     float alphaPower = 0.0f;
     bool log = false;
     std::string why;   // the paper's definition the formula follows (for --list-params and the docs)
+    // When set, the mapped value is the log-median of a log-normal whose sigma is this other parameter: value -=
+    // sigma^2 / 2, so that the mean of exp(value) is the quantity (deliot2023's density randomization).
+    std::string minusHalfSquareOf;
 };
 
 // Name of a quantity as written in formulas and method files ("density_per_uv", "angular_size", ...).

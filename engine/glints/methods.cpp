@@ -44,7 +44,10 @@ static GlintMethod deliot2023Method() {
             createDeliot2023Resources};
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
-         "Sec. 3: N(P) = facet density x area; the parameter is its natural log per unit UV area"},
+         "Sec. 3: N(P) = facet density x area, its natural log per unit UV area; the authors' density "
+         "randomization draws each vertex's count as exp(N(log_density, sigma)), whose mean is "
+         "exp(log_density + sigma^2 / 2): the log-median is set so that the mean count is the material's density",
+         "density_randomization"},
         {"microfacet_roughness", GlintQuantity::AngularSize, 1.0f, 2.0f, -2.0f, false,
          "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
          "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
@@ -131,7 +134,12 @@ static GlintMethod wang2020Method() {
             {{"particles", 1e5f, 1.0f, 1e9f, "N, particles per unit UV square (Eq. 4); edits rebuild the quadtree", {},
               false, true},
              {"gamma", 2.0f, 1.0f, 10.0f, "search cone half-angle gamma in degrees (Sec. 3.1; paper 1-6)"},
-             {"roughness", 0.1f, 0.02f, 1.0f, "Beckmann roughness of the particle normals (DPF extraction, Sec. 4.4)"},
+             {"roughness", 0.1f, 0.02f, 1.0f, "roughness alpha of the particle normals (DPF extraction, Sec. 4.4)"},
+             {"ndf", 1.0f, 0.0f, 1.0f,
+              "distribution of the particle normals: mapped from the material's NDF (default without a material: "
+              "the paper's Beckmann; a Beckmann DPF under a GGX material is 19-27 % too bright in the highlight); "
+              "edits load or generate that DPF set",
+              {"ggx", "beckmann"}},
              {"depth", 11.0f, 4.0f, 12.0f, "quadtree depth (paper: 11)", {}, true},
              {"micro_max", 4.0f, 0.0f, 1000.0f, "expected particles in footprint below which micro-scale (Sec. 4.3)"},
              {"macro_min", 64.0f, 1.0f, 100000.0f, "expected particles in footprint above which macro-scale"},
@@ -159,7 +167,10 @@ static GlintMethod wang2020Method() {
          "Sec. 3.1: gamma is the cone around the outgoing direction o, in degrees; a normal tilted by d turns the "
          "reflection by 2 d (d omega_o = 4 (o.h) d omega_h), so gamma_o = 2 gamma"},
         {"roughness", GlintQuantity::Alpha, 1.0f, 1.0f, 0.0f, false,
-         "Sec. 4.4: the Beckmann roughness of the particle normals is the material's alpha (tabulated: shared)"},
+         "Sec. 4.4: the roughness of the particle normals is the material's alpha (tabulated: shared)"},
+        {"ndf", GlintQuantity::Ndf, 1.0f, 1.0f, 0.0f, false,
+         "Sec. 3.2, Eq. 6: the DPF integrates the particle normals' distribution; it is the material's NDF (GGX "
+         "tables are ours, the paper tabulates Beckmann)"},
         {"color_r", GlintQuantity::ColorR, 1.0f, 1.0f, 0.0f, false, "glint colour"},
         {"color_g", GlintQuantity::ColorG, 1.0f, 1.0f, 0.0f, false, "glint colour"},
         {"color_b", GlintQuantity::ColorB, 1.0f, 1.0f, 0.0f, false, "glint colour"}};
@@ -234,7 +245,7 @@ std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial) {
             std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
             glsl += "#define P_" + upper + " PS_" + upper + "\n";
         }
-        return glsl;
+        return glsl + "const int g_glintMaterial = -1;   // no material: the shared values\n";
     }
     // One row of kMaxMethodParams / 4 vec4 per material, selected by g_glintMaterial (set by lighting.frag).
     glsl += "layout(std430, binding = " + std::to_string(BINDING_MATERIAL_METHOD_PARAMS) + ") readonly buffer MaterialMethodParamBlock { vec4 u_materialMethodParams[]; };\n"

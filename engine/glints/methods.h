@@ -29,6 +29,10 @@ public:
     // whose GPU data depend on parameters rebuild what changed here. Returns the passes that ran (name, wall ms)
     // so the renderer lists them in --stats (material editing, Wang et al. 2020 Sec. 4.5).
     virtual std::vector<std::pair<std::string, double>> update(const ParamValues&) { return {}; }
+    // Called before update() with every material's parameter values (glint_mapping.h materialParams; empty for a
+    // material that is not glinty): methods whose GPU data depend on per-material values keep them for update()
+    // (wang2020: one DPF table per distinct roughness).
+    virtual void setMaterials(const std::vector<ParamValues>&) {}
 };
 
 // What a method's screen-space pass reads and writes in one frame (see MethodPass).

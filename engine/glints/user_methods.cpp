@@ -185,16 +185,24 @@ private:
         method_.params.push_back(spec);
     }
 
-    // map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)]: the glint material's quantity feeding a declared
+    // map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]: the glint material's quantity feeding a declared
     // parameter (glint_mapping.h; the same text --list-params prints for a built-in's mapping). A parameter
     // without a map line keeps its default on every material (then --set).
     void parseMap(int line, const std::string& text) {
-        const std::string shape = "expected 'map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)]'";
+        const std::string shape = "expected 'map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]'";
         size_t eq = text.find('=');
         if (eq == std::string::npos) fail(line, shape);
         ParamMapping mapping;
         mapping.param = trim(text.substr(0, eq));
         std::string term = trim(text.substr(eq + 1));
+        static const std::regex halfSquare(R"(^(.*\S)\s+-\s*([a-z][a-z0-9_]*)\^2\s*/\s*2$)");
+        if (std::smatch m; std::regex_match(term, m, halfSquare)) {
+            mapping.minusHalfSquareOf = m[2].str();
+            term = m[1].str();
+            bool known = false;
+            for (const ParamSpec& p : method_.params) known = known || p.name == mapping.minusHalfSquareOf;
+            if (!known) fail(line, "map: '" + mapping.minusHalfSquareOf + "' (in '- NAME^2/2') is not a parameter of this header");
+        }
         bool declared = false;
         for (const ParamSpec& p : method_.params) declared = declared || p.name == mapping.param;
         if (!declared) fail(line, "map: '" + mapping.param + "' is not a parameter of this header");
@@ -222,11 +230,11 @@ private:
                 continue;
             }
             bool known = false;
-            for (int q = 0; q <= int(GlintQuantity::ColorB); ++q)
+            for (int q = 0; q <= int(GlintQuantity::Ndf); ++q)
                 if (base == glintQuantityName(GlintQuantity(q))) mapping.quantity = GlintQuantity(q), known = true;
             if (!known || haveQuantity)
                 fail(line, "map: '" + word + "' is not a quantity (density_per_uv, angular_size, alpha, anisotropy, "
-                           "color_variation, color.r, color.g, color.b) or " + shape.substr(9));
+                           "color_variation, color.r, color.g, color.b, ndf) or " + shape.substr(9));
             mapping.power = power.empty() ? 1.0f : value;
             haveQuantity = true;
         }

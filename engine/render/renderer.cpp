@@ -196,10 +196,15 @@ void Renderer::uploadMethodParams(const Scene& scene) {
     glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(shared.size() * sizeof(float)), shared.data());
     std::vector<float> rows;
     rows.reserve((scene.materials.size() + 1) * kMaxMethodParams);
+    std::vector<ParamValues> perMaterial;
+    perMaterial.reserve(scene.materials.size());
     for (const Material& m : scene.materials) {
-        std::vector<float> row = packMethodParams(method, materialParams(method, m, overrides));
+        perMaterial.push_back(materialParams(method, m, overrides));
+        std::vector<float> row = packMethodParams(method, perMaterial.back());
         rows.insert(rows.end(), row.begin(), row.end());
+        if (!m.glinty) perMaterial.back().clear();
     }
+    if (methodResources_) methodResources_->setMaterials(perMaterial);
     if (rows.empty()) rows = shared;
     const GLsizeiptr bytes = GLsizeiptr(rows.size() * sizeof(float));
     if (bytes > materialMethodParamsBytes_) {
