@@ -129,14 +129,15 @@ TEST(RenderCommand, WritesPngAndExrAndPrintsStats) {
     EXPECT_EQ(stats["backend"], "osmesa");
     EXPECT_EQ(stats["method"], "smooth");
     EXPECT_TRUE(stats["gl_renderer"].is_string());
-    // The frame's passes; on-demand work of a new scene (the sky-visibility bake or load, the probes' capture)
-    // is listed under names with a dot.
+    // The frame's passes (shadow_sun: the scene's sun, first frame); on-demand work of a new scene (the
+    // sky-visibility bake or load, the probes' capture) is listed under names with a dot.
     std::vector<std::string> framePasses;
     for (const auto& pass : stats["passes"]) {
         std::string name = pass.is_object() ? pass.value("name", std::string()) : std::string();
         if (name.find('.') == std::string::npos) framePasses.push_back(name);
     }
-    EXPECT_EQ(framePasses, (std::vector<std::string>{"gbuffer", "gtao", "ao_resolve", "lighting", "tonemap"}))
+    EXPECT_EQ(framePasses,
+              (std::vector<std::string>{"shadow_sun", "gbuffer", "gtao", "ao_resolve", "lighting", "tonemap"}))
         << stats["passes"].dump();
     EXPECT_GT(stats["counts"]["triangles"].get<int>(), 0);
     // EXR: linear float radiance, not tone-mapped (the highlight exceeds 1).

@@ -34,6 +34,7 @@ ParamSpec moveSpeedSpec() {
 static std::string sectionOfPrefix(const std::string& prefix) {
     if (prefix == "ssaa" || prefix == "taa" || prefix == "bloom" || prefix == "exposure") return "";
     if (prefix == "probes" || prefix == "ao") return "env";
+    if (prefix == "shadow") return "light";   // prefixOf already files shadow.* under the lights; the title too
     return prefix;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gl/pipeline_state.h"
+#include "gl/samplers.h"
 #include "common/bindings.glsl"
 
 namespace glimmer {
@@ -13,13 +14,7 @@ BloomPass::BloomPass(const std::filesystem::path& shaderRoot)
                                 {GL_FRAGMENT_SHADER, "image/bloom_downsample.frag"}}}),
       upsample_(shaderRoot, {"image/bloom_upsample",
                              {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "image/bloom_upsample.frag"}}}) {
-    GLuint sampler = 0;
-    glCreateSamplers(1, &sampler);
-    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    linear_ = gl::Sampler(sampler);
+    linear_ = gl::createLinearClampSampler();
 }
 
 bool BloomPass::wanted(const RenderSettings& settings) {

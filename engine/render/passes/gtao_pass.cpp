@@ -4,21 +4,17 @@
 
 #include "common/bindings.glsl"
 #include "gl/pipeline_state.h"
+#include "gl/samplers.h"
 
 namespace glimmer {
 
 GtaoPass::GtaoPass(const std::filesystem::path& shaderRoot, const AmbientOcclusion& ao)
     : program_(shaderRoot, {"gtao", {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "ao/gtao.frag"}}}),
       ao_(ao) {
-    glCreateSamplers(1, &linearDepthSampler_);
-    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(linearDepthSampler_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    linearDepthSampler_ = gl::createLinearClampSampler();
 }
 
-GtaoPass::~GtaoPass() { glDeleteSamplers(1, &linearDepthSampler_); }
+GtaoPass::~GtaoPass() = default;
 
 bool GtaoPass::runs(const FrameContext& frame) const {
     return ao_.settings().enabled && ao_.settings().screen && !frame.blendSample;
@@ -33,7 +29,7 @@ void GtaoPass::execute(const FrameContext& frame) {
     glProgramUniform4f(program_.id(), 1, s.radius, float(s.slices), float(s.steps), s.falloff);
     glBindTextureUnit(UNIT_AO_DEPTH, frame.targets.depthTexture());
     glBindTextureUnit(UNIT_AO_NORMAL, frame.targets.gbufferTexture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
-    glBindSampler(UNIT_AO_DEPTH, linearDepthSampler_);
+    glBindSampler(UNIT_AO_DEPTH, linearDepthSampler_.id());
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindSampler(UNIT_AO_DEPTH, 0);   // later passes read this unit with the texture's own state

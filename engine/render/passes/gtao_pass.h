@@ -23,7 +23,7 @@ public:
 private:
     gl::Program program_;
     const AmbientOcclusion& ao_;
-    GLuint linearDepthSampler_ = 0;   // bilinear depth at fractional sample positions (shaders/ao/gtao.frag)
+    gl::Sampler linearDepthSampler_;   // bilinear depth at fractional sample positions (shaders/ao/gtao.frag)
 };
 
 }  // namespace glimmer

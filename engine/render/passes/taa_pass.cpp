@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "gl/pipeline_state.h"
+#include "gl/samplers.h"
 #include "render/image/halton_jitter.h"
 #include "common/bindings.glsl"
 
@@ -18,13 +19,7 @@ constexpr float kCutCosine = 0.9f;             // ~26 degrees of rotation
 TaaPass::TaaPass(const std::filesystem::path& shaderRoot)
     : program_(shaderRoot, {"image/taa_resolve",
                             {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "image/taa_resolve.frag"}}}) {
-    GLuint sampler = 0;
-    glCreateSamplers(1, &sampler);
-    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    linearClamp_ = gl::Sampler(sampler);
+    linearClamp_ = gl::createLinearClampSampler();
 }
 
 bool TaaPass::wanted(const RenderSettings& settings) {
