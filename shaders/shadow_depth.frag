@@ -2,6 +2,8 @@
 // grilles cast the shadow of what is drawn.
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
+#include "common/footprint.glsl"
+#include "common/material_textures.glsl"
 
 in vec2 v_uv;
 
@@ -16,12 +18,16 @@ void main() {
     if (cutoff >= 0.0) {
         float alpha = u_materials[u_materialIndex].baseColor.a;
         if ((u_textureMask & 1) != 0) {
-            // An explicit isotropic level (the larger axis): llvmpipe's anisotropic filter has no sample cap, and
-            // a hostile footprint would stall the pass (gbuffer.frag explains); a mask needs no sharper level.
+            // An explicit isotropic level (the larger axis): a mask needs no sharper level. llvmpipe's filter
+            // scans the quad's coordinate differences even at an explicit level, and even where this branch is
+            // masked off (material_textures.glsl), so a footprint wider than the texture reads its 1x1 level at a
+            // constant coordinate: a uvScale of 65538 took minutes per cascade before.
             vec2 uv = (u_uvTransform * vec3(v_uv, 1.0)).xy;
+            TextureFootprint footprint = textureFootprint(uv);
+            bool wide = !(footprint.major <= 1.0);
             vec2 texels = uv * vec2(textureSize(t_baseColor, 0));
             float lod = 0.5 * log2(max(max(dot(dFdx(texels), dFdx(texels)), dot(dFdy(texels), dFdy(texels))), 1.0));
-            alpha *= textureLod(t_baseColor, uv, min(lod, 20.0)).a;
+            alpha *= textureLod(t_baseColor, wide ? vec2(0.5) : uv, wide ? 64.0 : min(lod, 20.0)).a;
         }
         if (alpha < cutoff) discard;
     }

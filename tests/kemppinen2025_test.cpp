@@ -16,6 +16,7 @@
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "glints/glint_mapping.h"
 #include "glints/method_checks.h"
 #include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
@@ -188,7 +189,12 @@ static void expectShaderMatchesCpu(GlintRig& rig, const RenderSettings& settings
     const Scene& scene = rig.scene();
     const Camera& camera = scene.cameras.front();
     glm::dvec3 toLight = glm::normalize(glm::dvec3(scene.lights[0].vector));
-    k25::Params params = k25::paramsFrom(settings.methodValues("kemppinen2025"));
+    // The shader reads the plane's glint material mapped to the method's parameters (glint_mapping.h), with the
+    // test's --set values on top: the reference takes the same values.
+    const Material& plane = *std::find_if(scene.materials.begin(), scene.materials.end(),
+                                          [](const Material& m) { return m.glinty; });
+    k25::Params params = k25::paramsFrom(
+        materialParams(findGlintMethod("kemppinen2025"), plane, settings.methodValues("kemppinen2025")));
     int compared = 0, failed = 0;
     double sumGpu = 0, sumCpu = 0, sumSmooth = 0;
     int failedBadly = 0;

@@ -485,7 +485,7 @@ TEST(ScenesFile, MistakesGiveOneLineErrorsNamingFileAndKey) {
         {"bad_instance.json", R"({"base": "plane90", "instances": [{"mesh": "nope", "material": "plane"}]})", "nope"},
         {"bad_walk.json", R"({"base": "plane90", "walkthrough": ["top", "ghost"]})", "ghost"},
         {"bad_camera.json", R"({"base": "plane90", "cameras": [{"name": "c", "position": [0, 1, 0], "target": [0, 1, 0]}]})", "cameras[0]"},
-        {"bad_light.json", R"({"base": "plane90", "lights": [{"type": "spot", "position": [0, 1, 0]}]})", "lights[0].type"},
+        {"bad_light.json", R"({"base": "plane90", "lights": [{"type": "spot", "position": [0, 1, 0]}]})", "lights[0]: a spot light needs"},
         {"bad_model.json", R"({"base": "plane90", "models": [{"gltf": "missing.gltf"}]})", "missing.gltf"},
         {"empty.json", R"({"sky": [0, 0, 0]})", "nothing to render"},
     };

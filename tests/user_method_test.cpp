@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/files.h"
+#include "glints/glint_mapping.h"
 #include "glints/method_checks.h"
 #include "glints/user_methods.h"
 #include "render/aov.h"
@@ -40,6 +41,8 @@ param: roughness = 0.01 in [0.001, 1] log: micro roughness
 param: steps = 4 in [1, 16] int: loop steps
 param: blend = smooth in {linear, smooth, cubic}: how cells blend
 converge:  log_density=40, blend=linear
+map: log_density = ln(density_per_uv) - steps^2/2
+map: roughness = 2 (angular_size)^2 alpha^-2
 */
 float glintD() { return 1.0; }
 )";
@@ -65,10 +68,25 @@ TEST(UserMethodHeader, GoodHeaderGivesTheTableEntry) {
     EXPECT_EQ(m.params[3].maxValue, 2.0f);
     EXPECT_EQ(m.convergence.at("log_density"), 40.0f);
     EXPECT_EQ(m.convergence.at("blend"), 0.0f);
-    // The same P_<NAME> block as the built-ins.
+    // map lines: the glint material's quantities, in the form --list-params prints.
+    ASSERT_EQ(m.materialMapping.size(), 2u);
+    EXPECT_EQ(mappingFormula(m.materialMapping[0]), "log_density = ln(density_per_uv) - steps^2/2");
+    EXPECT_TRUE(m.materialMapping[0].log);
+    EXPECT_EQ(m.materialMapping[0].minusHalfSquareOf, "steps");
+    EXPECT_EQ(m.materialMapping[1].quantity, GlintQuantity::AngularSize);
+    EXPECT_EQ(m.materialMapping[1].scale, 2.0f);
+    EXPECT_EQ(m.materialMapping[1].power, 2.0f);
+    EXPECT_EQ(m.materialMapping[1].alphaPower, -2.0f);
+    EXPECT_EQ(mappingFormula(m.materialMapping[1]), "roughness = 2 (angular_size)^2 alpha^-2");
+    // The same P_<NAME> block as the built-ins (outside the lighting pass P_ reads the shared values PS_).
     std::string glsl = methodParamsGlsl(m);
-    EXPECT_NE(glsl.find("#define P_LOG_DENSITY u_methodParams[0].x"), std::string::npos) << glsl;
-    EXPECT_NE(glsl.find("#define P_BLEND u_methodParams[0].w"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define PS_LOG_DENSITY u_methodParams[0].x"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define P_LOG_DENSITY PS_LOG_DENSITY"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define PS_BLEND u_methodParams[0].w"), std::string::npos) << glsl;
+    // In the lighting pass P_ reads the pixel's material's row (per-material parameters, glint_mapping.h).
+    std::string lighting = methodParamsGlsl(m, true);
+    EXPECT_NE(lighting.find("#define P_LOG_DENSITY u_materialMethodParams[g_glintMaterial * 16 + 0].x"),
+              std::string::npos) << lighting;
     // Defaults only: title falls back to the name, no resources.
     GlintMethod small = parseUserMethodHeader("/* glimmer-method\nname: tiny\ncitation: x\n*/\n", "tiny.glsl");
     EXPECT_EQ(small.title, "tiny");
@@ -110,6 +128,15 @@ TEST(UserMethodHeader, EveryBadHeaderIsAnErrorNamingItsLine) {
         {"/* glimmer-method\nname: a\ncitation: c\nconverge: y=2\nparam: x = 1 in [0, 2]: m\n*/\n", 4,
          "'y' is not a parameter"},
         {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nconverge: x=5\n*/\n", 5, "outside"},
+        {"/* glimmer-method\nname: a\ncitation: c\nmap: y = density_per_uv\n*/\n", 4, "'y' is not a parameter"},
+        {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = 2 weight\n*/\n", 5,
+         "'weight' is not a quantity"},
+        {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = alpha\nmap: x = alpha\n*/\n", 6,
+         "mapped twice"},
+        {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = ln(alpha\n*/\n", 5,
+         "closing ')'"},
+        {"/* glimmer-method\nname: a\ncitation: c\nparam: x = 1 in [0, 2]: m\nmap: x = ln(alpha) - s^2/2\n*/\n", 5,
+         "'s' (in '- NAME^2/2') is not a parameter"},
         {"/* glimmer-method\nname: a\ncitation: c\nresources: nowhere\n*/\n", 4, "not a built-in method"},
         {"/* glimmer-method\nname: a\ncitation: c\nresources: zirr2016\n*/\n", 4, "has no GPU resources"},
         {"/* glimmer-method\nname: a\ncitation: c */ float x;\n", 3, "code after the header"},
@@ -134,6 +161,15 @@ TEST(UserMethodHeader, ExampleRegistersAndIsListedLikeABuiltIn) {
     EXPECT_TRUE(m.isUserMethod());
     EXPECT_EQ(m.sourceFile, fs::canonical(examplePath()));
     EXPECT_EQ(m.convergence.at("log_density"), 40.0f);
+    // Its map lines are the built-in's mapping: a glinty material gets the same parameter values from both.
+    Material glinty;
+    glinty.glinty = true;
+    glinty.alpha = 0.3f;
+    glinty.glint.density = 4e6f;
+    glinty.glint.angularSize = 0.02f;
+    const GlintMethod& builtin = findGlintMethod("deliot2023");
+    for (const char* name : {"log_density", "microfacet_roughness"})   // log_density with its - sigma^2/2
+        EXPECT_FLOAT_EQ(materialParams(m, glinty, {}).at(name), materialParams(builtin, glinty, {}).at(name)) << name;
     std::string listing = describeParams();
     EXPECT_NE(listing.find("deliot2023_smoothstep.angular_blend"), std::string::npos);
     RenderSettings s;

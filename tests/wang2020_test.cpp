@@ -139,13 +139,13 @@ TEST(Wang2020Quadtree, MultinomialSplitting) {
 
 namespace {
 
-struct GlintMaterial {
+struct WangTestMaterial {
     float alpha, gamma, particles;
 };
 
 // A 256x256 view of tests/data/wang2020_point.json with the method wang2020 for material m (tables at 45x45x90),
 // plus `extraSets`.
-RenderRequest wangRequest(const GlintMaterial& m, const std::string& camera, const std::vector<std::string>& extraSets) {
+RenderRequest wangRequest(const WangTestMaterial& m, const std::string& camera, const std::vector<std::string>& extraSets) {
     RenderRequest request;
     request.scene = kScene;
     request.camera = camera;
@@ -161,7 +161,7 @@ RenderRequest wangRequest(const GlintMaterial& m, const std::string& camera, con
 }
 
 // The same view lit by environment `env` through --ibl wang2020 only (lights off).
-RenderRequest wangEnvironmentRequest(const GlintMaterial& m, const std::string& camera, const std::string& env,
+RenderRequest wangEnvironmentRequest(const WangTestMaterial& m, const std::string& camera, const std::string& env,
                                      std::vector<std::string> extraSets = {}) {
     extraSets.push_back("light.intensity=0");
     RenderRequest request = wangRequest(m, camera, extraSets);
@@ -205,7 +205,7 @@ struct PixelPair {
 };
 
 // One OffscreenSession; each seed re-runs only the quadtree pass (the particles change, the tables do not).
-std::vector<PixelPair> renderPairs(const GlintMaterial& m, const std::string& camera, int seeds = 1,
+std::vector<PixelPair> renderPairs(const WangTestMaterial& m, const std::string& camera, int seeds = 1,
                                    const std::vector<std::string>& extraSets = {}) {
     useTestCache();
     RenderRequest request = wangRequest(m, camera, extraSets);
@@ -269,7 +269,7 @@ void writeSideBySide(const std::vector<PixelPair>& pairs, const std::string& nam
 // the first dense (about 15: meso-scale). The sparse one
 // averages 8 particle sets (seeds) to reach several hundred glints (one set: ratios 1.07-1.18 seen).
 TEST(Wang2020Render, AverageGlintEnergyMatchesExplicitReference) {
-    for (GlintMaterial m : {GlintMaterial{0.1f, 6.0f, 1e6f}, GlintMaterial{0.5f, 2.0f, 1e5f}}) {
+    for (WangTestMaterial m : {WangTestMaterial{0.1f, 6.0f, 1e6f}, WangTestMaterial{0.5f, 2.0f, 1e5f}}) {
         int seeds = m.particles < 1e6f ? 8 : 1;
         std::vector<PixelPair> pairs = renderPairs(m, "top", seeds);
         double gpu = 0, ref = 0;
@@ -304,7 +304,7 @@ TEST(Wang2020Render, ScalesAgreeAtThresholds) {
         // N chosen per threshold so that the threshold's row lies inside the highlight of the tilted view.
         for (auto [threshold, particles] : {std::pair{4.0, 2.5e5f}, std::pair{64.0, 3.4e6f}}) {
             std::vector<PixelPair> pairs =
-                renderPairs(GlintMaterial{0.4f, 4.0f, particles}, "tilted", threshold < 10 ? 2 : 1, {transition});
+                renderPairs(WangTestMaterial{0.4f, 4.0f, particles}, "tilted", threshold < 10 ? 2 : 1, {transition});
             for (auto [lo, hi] : {std::pair{threshold / 2, threshold}, std::pair{threshold, threshold * 2}}) {
                 double gpu = 0, ref = 0;
                 int pixels = 0;
@@ -451,7 +451,7 @@ TEST(Wang2020Environment, AverageGlintEnergyMatchesExplicitReference) {
     std::vector<std::string> envs = {"constant:1,1,1"};
     if (std::filesystem::exists(hdr)) envs.push_back(hdr);
     for (const std::string& env : envs)
-        for (GlintMaterial m : {GlintMaterial{0.1f, 6.0f, 1e6f}, GlintMaterial{0.5f, 2.0f, 1e5f}}) {
+        for (WangTestMaterial m : {WangTestMaterial{0.1f, 6.0f, 1e6f}, WangTestMaterial{0.5f, 2.0f, 1e5f}}) {
             RenderRequest request = wangEnvironmentRequest(m, "top", env);
             int seeds = m.particles < 1e6f ? 4 : 1;
             OffscreenSession session(request);
@@ -544,7 +544,7 @@ TEST(Wang2020Editing, RendererRunsOnlyNeededPasses) {
 TEST(Wang2020Golden, TiltedViewAcrossThresholds) {
     useTestCache();
     for (const char* particles : {"2.5e5", "3.4e6"}) {
-        RenderRequest request = wangRequest(GlintMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"exposure=-1"});
+        RenderRequest request = wangRequest(WangTestMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"exposure=-1"});
         RenderResult result = renderOffscreen(request);
         EXPECT_EQ(result.stats["counts"]["non_finite_values"].get<size_t>(), 0u);
         test::GoldenComparison comparison = test::compareWithGolden(std::string("wang2020_tilted_n") + particles,
@@ -638,7 +638,7 @@ namespace {
 double largestTextureStep(const std::string& particles, const std::string& transition, double eLo, double eHi) {
     useTestCache();
     RenderRequest request =
-        wangRequest(GlintMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"wang2020.transition=" + transition});
+        wangRequest(WangTestMaterial{0.4f, 4.0f, std::stof(particles)}, "tilted", {"wang2020.transition=" + transition});
     OffscreenSession session(request);
     std::vector<float> radiance = session.render(request).hdr;
     std::vector<float> expected = renderAov(session, request, "footprint");
@@ -743,12 +743,12 @@ TEST(Wang2020Environment, SnowAndGlitterClothNextToReference) {
     ImageF image = readImage(hdr);
     struct Look {
         const char* name;
-        GlintMaterial m;
+        WangTestMaterial m;
         glm::vec3 color;
     };
     for (const Look& look : {Look{"snow", {0.1f, 6.0f, 1e6f}, {1.0f, 1.0f, 1.0f}},
                              Look{"glitter_cloth", {0.5f, 2.0f, 1e5f}, {1.0f, 0.55f, 0.75f}}}) {
-        const GlintMaterial& m = look.m;
+        const WangTestMaterial& m = look.m;
         RenderRequest request = wangEnvironmentRequest(
             m, "tilted", hdr,
             {"wang2020.color_r=" + std::to_string(look.color.x), "wang2020.color_g=" + std::to_string(look.color.y),

@@ -12,6 +12,8 @@ param: normalization = vertex in {vertex, footprint}: each vertex's count over i
 param: angular_grid = projected in {projected, lobe}: Eq. 14 cell R wide in projected h (authors' code) or sqrt(R / D(n))
 param: gate = soft in {soft, hard}: the authors' soft Bernoulli gate or Eq. 18's hard one
 param: angular_blend = smoothstep in {bilinear, smoothstep}: weights of the 4 angular cells around h: Eq. 14's bilinear ones, or smoothstep per axis (ours)
+map: log_density = ln(density_per_uv) - density_randomization^2/2
+map: microfacet_roughness = (angular_size)^2 alpha^-2
 */
 // An example of a user glint method (docs/user_methods.md): the built-in deliot2023 with one change, the
 // weights of the four hemispherical-grid cells around the projected half vector (Eq. 14).

@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "common/bindings.glsl"
 #include "glints/deliot2023_resources.h"
 #include "glints/wang2020_post_pass.h"
 #include "glints/wang2020_resources.h"
@@ -18,7 +19,7 @@ static GlintMethod smoothMethod() {
 
 // Deliot & Belcour 2023: shaders/glints/deliot2023.glsl; defaults and ranges from methods.md (public ports).
 static GlintMethod deliot2023Method() {
-    return {"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
+    GlintMethod method{"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
             "GLINT_METHOD_DELIOT2023", "glints/deliot2023.glsl",
             "Deliot & Belcour 2023, Real-time rendering of glinty appearances using distributed binomial laws on "
             "anisotropic grids, Computer Graphics Forum 42(8)",
@@ -40,13 +41,23 @@ static GlintMethod deliot2023Method() {
              {"gate", 0.0f, 0.0f, 1.0f,
               "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
               {"soft", "hard"}}},
-            createDeliot2023Resources, {}, false,
-            {{"log_density", 40.0f}}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
+            createDeliot2023Resources};
+    method.materialMapping = {
+        {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
+         "Sec. 3: N(P) = facet density x area, its natural log per unit UV area; the authors' density "
+         "randomization draws each vertex's count as exp(N(log_density, sigma)), whose mean is "
+         "exp(log_density + sigma^2 / 2): the log-median is set so that the mean count is the material's density",
+         "density_randomization"},
+        {"microfacet_roughness", GlintQuantity::AngularSize, 1.0f, 2.0f, -2.0f, false,
+         "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
+         "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
+    method.convergence = {{"log_density", 40.0f}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
+    return method;
 }
 
 // Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016.glsl.
 static GlintMethod zirr2016Method() {
-    return {"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
+    GlintMethod method{"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
             "glints/zirr2016.glsl",
             "Zirr & Kaplanyan 2016, Real-time rendering of procedural multiscale materials, I3D 2016",
             // The authors' shader's parameters with their defaults, except `variation` (raises the mean; left out).
@@ -55,14 +66,20 @@ static GlintMethod zirr2016Method() {
               "gamma: half-angle (radians) of the cone around h in which a facet reflects; also the angular cell",
               {}, false, true},
              {"dynamic_range", 50000.0f, 1.0f, 1e9f, "largest D / D_smooth a pixel may reach (their clamp)", {}, false,
-              true}},
-            nullptr, {}, false, {{"log_density", 40.0f}}};
+              true}}};
+    method.materialMapping = {
+        {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
+         "Sec. 4: facets per unit UV area, as its natural log"},
+        {"search_cone", GlintQuantity::AngularSize, 1.0f, 1.0f, 0.0f, false,
+         "Sec. 4.1: gamma is the half-angle of the cone around h (p = pi gamma^2 D(h) (h.n)): the same quantity"}};
+    method.convergence = {{"log_density", 40.0f}};
+    return method;
 }
 
 // Kemppinen et al. 2025: semi-discrete NDF as a Gaussian mixture on an implicit 4D grid (shaders/glints/
 // kemppinen2025.glsl). Density is per unit UV area (UVs of the built-in scenes are metres).
 static GlintMethod kemppinen2025Method() {
-    return {"kemppinen2025",
+    GlintMethod method{"kemppinen2025",
             "Kemppinen et al. 2025 (constant-time glinty NDF)",
             "GLINT_METHOD_KEMPPINEN2025",
             "glints/kemppinen2025.glsl",
@@ -93,8 +110,18 @@ static GlintMethod kemppinen2025Method() {
                  "sqrt(N)) (spatial cells 3-6 filter deviations, our earlier reading)",
                  {"authors", "cells"}},
             },
-            nullptr, {}, false,
-            {{"density", 1e13f}}};   // tests/kemppinen2025_test.cpp HighDensityConvergesToSmooth
+            nullptr};
+    method.materialMapping = {
+        {"density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, false, "Table 1: K_P points per unit (UV) area"},
+        {"micro_roughness", GlintQuantity::AngularSize, 0.70710678f, 1.0f, 0.0f, false,
+         "Eq. 4, Algorithm 1: one glint is a Gaussian of angular deviation alpha* (Sigma_a = pi D(h) alpha*^2 in "
+         "the prior disk, where area pi D(h) (h.n) per steradian); its equivalent area 2 pi alpha*^2 equals the "
+         "cone's pi gamma^2 when alpha* = gamma / sqrt(2)"},
+        {"glint_anisotropy", GlintQuantity::Anisotropy, 1.0f, 1.0f, 0.0f, false, "Sec. 3.3.6: A*"},
+        {"color_variation", GlintQuantity::ColorVariation, 1.0f, 1.0f, 0.0f, false,
+         "Sec. 3.3.6: per-glint colours"}};
+    method.convergence = {{"density", 1e13f}};   // tests/kemppinen2025_test.cpp HighDensityConvergesToSmooth
+    return method;
 }
 
 // Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020.glsl).
@@ -107,7 +134,12 @@ static GlintMethod wang2020Method() {
             {{"particles", 1e5f, 1.0f, 1e9f, "N, particles per unit UV square (Eq. 4); edits rebuild the quadtree", {},
               false, true},
              {"gamma", 2.0f, 1.0f, 10.0f, "search cone half-angle gamma in degrees (Sec. 3.1; paper 1-6)"},
-             {"roughness", 0.1f, 0.02f, 1.0f, "Beckmann roughness of the particle normals (DPF extraction, Sec. 4.4)"},
+             {"roughness", 0.1f, 0.02f, 1.0f, "roughness alpha of the particle normals (DPF extraction, Sec. 4.4)"},
+             {"ndf", 1.0f, 0.0f, 1.0f,
+              "distribution of the particle normals: mapped from the material's NDF (default without a material: "
+              "the paper's Beckmann; a Beckmann DPF under a GGX material is 19-27 % too bright in the highlight); "
+              "edits load or generate that DPF set",
+              {"ggx", "beckmann"}},
              {"depth", 11.0f, 4.0f, 12.0f, "quadtree depth (paper: 11)", {}, true},
              {"micro_max", 4.0f, 0.0f, 1000.0f, "expected particles in footprint below which micro-scale (Sec. 4.3)"},
              {"macro_min", 64.0f, 1.0f, 100000.0f, "expected particles in footprint above which macro-scale"},
@@ -126,6 +158,22 @@ static GlintMethod wang2020Method() {
             createWang2020Resources};
     method.glintPostPass = true;   // Sec. 4.4: the lighting pass leaves the glints to the post pass
     method.createPasses = glintpost::createPasses;
+    // N, gamma and roughness shape the quadtree and the DPF tables, built once for the densest glinty material;
+    // the others thin its particles (shaders/glints/wang2020.glsl) and share its gamma and tabulated roughness.
+    method.sharedDataMaterial = "particles";
+    method.materialMapping = {
+        {"particles", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, false, "Eq. 4: N particles per unit UV square"},
+        {"gamma", GlintQuantity::AngularSize, 360.0f / 3.14159265f, 1.0f, 0.0f, false,
+         "Sec. 3.1: gamma is the cone around the outgoing direction o, in degrees; a normal tilted by d turns the "
+         "reflection by 2 d (d omega_o = 4 (o.h) d omega_h), so gamma_o = 2 gamma"},
+        {"roughness", GlintQuantity::Alpha, 1.0f, 1.0f, 0.0f, false,
+         "Sec. 4.4: the roughness of the particle normals is the material's alpha (tabulated: shared)"},
+        {"ndf", GlintQuantity::Ndf, 1.0f, 1.0f, 0.0f, false,
+         "Sec. 3.2, Eq. 6: the DPF integrates the particle normals' distribution; it is the material's NDF (GGX "
+         "tables are ours, the paper tabulates Beckmann)"},
+        {"color_r", GlintQuantity::ColorR, 1.0f, 1.0f, 0.0f, false, "glint colour"},
+        {"color_g", GlintQuantity::ColorG, 1.0f, 1.0f, 0.0f, false, "glint colour"},
+        {"color_b", GlintQuantity::ColorB, 1.0f, 1.0f, 0.0f, false, "glint colour"}};
     return method;
 }
 
@@ -189,8 +237,27 @@ std::vector<float> packParameters(const std::vector<ParamSpec>& params, const Pa
     return packed;
 }
 
-std::string methodParamsGlsl(const GlintMethod& method) {
-    return parameterBlockGlsl(method.params, 3, "MethodParamBlock", "u_methodParams", "P_", kMaxMethodParams);
+std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial) {
+    std::string glsl = parameterBlockGlsl(method.params, 3, "MethodParamBlock", "u_methodParams", "PS_", kMaxMethodParams);
+    if (!perMaterial) {
+        for (const ParamSpec& spec : method.params) {
+            std::string upper = spec.name;
+            std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+            glsl += "#define P_" + upper + " PS_" + upper + "\n";
+        }
+        return glsl + "const int g_glintMaterial = -1;   // no material: the shared values\n";
+    }
+    // One row of kMaxMethodParams / 4 vec4 per material, selected by g_glintMaterial (set by lighting.frag).
+    glsl += "layout(std430, binding = " + std::to_string(BINDING_MATERIAL_METHOD_PARAMS) + ") readonly buffer MaterialMethodParamBlock { vec4 u_materialMethodParams[]; };\n"
+            "int g_glintMaterial = 0;\n";
+    static const char* lanes = "xyzw";
+    for (size_t i = 0; i < method.params.size(); ++i) {
+        std::string upper = method.params[i].name;
+        std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+        glsl += "#define P_" + upper + " u_materialMethodParams[g_glintMaterial * " + std::to_string(kMaxMethodParams / 4) +
+                " + " + std::to_string(i / 4) + "]." + lanes[i % 4] + "\n";
+    }
+    return glsl;
 }
 
 std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values) {

@@ -14,6 +14,7 @@
 
 #include "core/params.h"
 #include "gl/program.h"
+#include "glints/glint_mapping.h"
 
 namespace glimmer {
 
@@ -28,6 +29,10 @@ public:
     // whose GPU data depend on parameters rebuild what changed here. Returns the passes that ran (name, wall ms)
     // so the renderer lists them in --stats (material editing, Wang et al. 2020 Sec. 4.5).
     virtual std::vector<std::pair<std::string, double>> update(const ParamValues&) { return {}; }
+    // Called before update() with every material's parameter values (glint_mapping.h materialParams; empty for a
+    // material that is not glinty): methods whose GPU data depend on per-material values keep them for update()
+    // (wang2020: one DPF table per distinct roughness).
+    virtual void setMaterials(const std::vector<ParamValues>&) {}
 };
 
 // What a method's screen-space pass reads and writes in one frame (see MethodPass).
@@ -73,6 +78,13 @@ struct GlintMethod {
     // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
     // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
     bool glintPostPass = false;
+    // How the glint material (scene.h GlintMaterial) sets this method's parameters per material (glint_mapping.h);
+    // parameters without a mapping keep their default unless --set. Each row cites the paper's definition.
+    std::vector<ParamMapping> materialMapping;
+    // The method's shared GPU data (createResources' update()) are built from one material's values: the glinty
+    // material with the largest value of this parameter (wang2020: particles, so that every material thins the
+    // densest material's tree), or the first glinty material when empty. Shaders read those values as PS_<NAME>.
+    std::string sharedDataMaterial;
     // Parameter values at which the method must render like `smooth` ("very high density"): the convergence
     // rule of check-method (glints/method_checks.h). Empty: the method declares none.
     ParamValues convergence;
@@ -93,8 +105,11 @@ const GlintMethod& findGlintMethod(const std::string& id);
 // or another file's.
 std::string registerGlintMethod(GlintMethod method);
 
-// GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter.
-std::string methodParamsGlsl(const GlintMethod& method);
+// GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter. With perMaterial
+// (the lighting pass), P_<NAME> reads the row of the material g_glintMaterial in a storage buffer
+// (BINDING_MATERIAL_METHOD_PARAMS, kMaxMethodParams floats per material, packMethodParams order) and the block
+// holds the shared values (PS_<NAME>); otherwise P_<NAME> and PS_<NAME> both read the block.
+std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial = false);
 // Packs values in the order of methodParamsGlsl (std140 vec4 array).
 std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values);
 

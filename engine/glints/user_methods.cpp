@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/files.h"
+#include "glints/glint_mapping.h"
 
 namespace glimmer {
 namespace fs = std::filesystem;
@@ -55,6 +56,7 @@ public:
         bool inside = false, closed = false;
         int convergeLine = 0;
         std::string convergeText;
+        std::vector<std::pair<int, std::string>> mapLines;
         while (std::getline(lines, line)) {
             ++number;
             if (!inside) {
@@ -77,19 +79,20 @@ public:
             if (!body.empty() && body[0] == '*') body = trim(body.substr(1));   // " * key: value" style
             if (!body.empty() && body[0] != '#') {
                 size_t colon = body.find(':');
-                if (colon == std::string::npos) fail(number, "expected 'key: value' (keys: name, title, citation, param, converge, resources)");
+                if (colon == std::string::npos) fail(number, "expected 'key: value' (keys: name, title, citation, param, map, converge, resources)");
                 std::string key = trim(body.substr(0, colon)), value = trim(body.substr(colon + 1));
                 if (key == "name") setOnce(number, "name", method_.id, value);
                 else if (key == "title") setOnce(number, "title", method_.title, value);
                 else if (key == "citation") setOnce(number, "citation", method_.citation, value);
                 else if (key == "resources") setOnce(number, "resources", method_.resourcesFrom, value);
                 else if (key == "param") parseParam(number, value);
+                else if (key == "map") mapLines.push_back({number, value});
                 else if (key == "converge") {
                     if (convergeLine) fail(number, "'converge' given twice (first on line " + std::to_string(convergeLine) + ")");
                     convergeLine = number;
                     convergeText = value;
                 } else {
-                    fail(number, "unknown key '" + key + "' (keys: name, title, citation, param, converge, resources)");
+                    fail(number, "unknown key '" + key + "' (keys: name, title, citation, param, map, converge, resources)");
                 }
             }
             if (closed) break;
@@ -107,8 +110,12 @@ public:
             if (!from) fail(keyLines_["resources"], "resources: '" + method_.resourcesFrom + "' is not a built-in method");
             if (!from->createResources) fail(keyLines_["resources"], "resources: built-in method '" + method_.resourcesFrom + "' has no GPU resources");
             method_.createResources = from->createResources;
+            // The borrowed resources are built from the shared values of the material the built-in chooses.
+            for (const ParamSpec& p : method_.params)
+                if (p.name == from->sharedDataMaterial) method_.sharedDataMaterial = from->sharedDataMaterial;
         }
         if (convergeLine) parseConverge(convergeLine, convergeText);
+        for (const auto& [line, text] : mapLines) parseMap(line, text);
         return method_;
     }
 
@@ -176,6 +183,64 @@ private:
             if (spec.logScale && spec.maxValue <= 0.0f) fail(line, "parameter '" + spec.name + "': log needs a positive maximum");
         }
         method_.params.push_back(spec);
+    }
+
+    // map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]: the glint material's quantity feeding a declared
+    // parameter (glint_mapping.h; the same text --list-params prints for a built-in's mapping). A parameter
+    // without a map line keeps its default on every material (then --set).
+    void parseMap(int line, const std::string& text) {
+        const std::string shape = "expected 'map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]'";
+        size_t eq = text.find('=');
+        if (eq == std::string::npos) fail(line, shape);
+        ParamMapping mapping;
+        mapping.param = trim(text.substr(0, eq));
+        std::string term = trim(text.substr(eq + 1));
+        static const std::regex halfSquare(R"(^(.*\S)\s+-\s*([a-z][a-z0-9_]*)\^2\s*/\s*2$)");
+        if (std::smatch m; std::regex_match(term, m, halfSquare)) {
+            mapping.minusHalfSquareOf = m[2].str();
+            term = m[1].str();
+            bool known = false;
+            for (const ParamSpec& p : method_.params) known = known || p.name == mapping.minusHalfSquareOf;
+            if (!known) fail(line, "map: '" + mapping.minusHalfSquareOf + "' (in '- NAME^2/2') is not a parameter of this header");
+        }
+        bool declared = false;
+        for (const ParamSpec& p : method_.params) declared = declared || p.name == mapping.param;
+        if (!declared) fail(line, "map: '" + mapping.param + "' is not a parameter of this header");
+        for (const ParamMapping& m : method_.materialMapping)
+            if (m.param == mapping.param) fail(line, "map: '" + mapping.param + "' mapped twice");
+        if (term.rfind("ln(", 0) == 0) {
+            if (term.back() != ')') fail(line, "map: 'ln(' without its closing ')'");
+            mapping.log = true;
+            term = trim(term.substr(3, term.size() - 4));
+        }
+        bool haveQuantity = false, haveScale = false;
+        std::stringstream words(term);
+        for (std::string word; words >> word;) {
+            std::string base = word, power;
+            if (size_t caret = word.find('^'); caret != std::string::npos) base = word.substr(0, caret), power = word.substr(caret + 1);
+            if (base.size() > 2 && base.front() == '(' && base.back() == ')') base = base.substr(1, base.size() - 2);
+            float value = 0.0f;
+            if (power.empty() && !haveScale && !haveQuantity && parseNumber(base, value)) {
+                mapping.scale = value, haveScale = true;
+                continue;
+            }
+            if (!power.empty() && !parseNumber(power, value)) fail(line, "map: power '" + power + "' is not a number");
+            if (base == "alpha" && haveQuantity) {
+                mapping.alphaPower = power.empty() ? 1.0f : value;
+                continue;
+            }
+            bool known = false;
+            for (int q = 0; q <= int(GlintQuantity::Ndf); ++q)
+                if (base == glintQuantityName(GlintQuantity(q))) mapping.quantity = GlintQuantity(q), known = true;
+            if (!known || haveQuantity)
+                fail(line, "map: '" + word + "' is not a quantity (density_per_uv, angular_size, alpha, anisotropy, "
+                           "color_variation, color.r, color.g, color.b, ndf) or " + shape.substr(9));
+            mapping.power = power.empty() ? 1.0f : value;
+            haveQuantity = true;
+        }
+        if (!haveQuantity) fail(line, "map: no quantity; " + shape);
+        mapping.why = "method file, line " + std::to_string(line);
+        method_.materialMapping.push_back(mapping);
     }
 
     // converge: NAME=VALUE[, NAME=VALUE ...], names among the declared parameters.

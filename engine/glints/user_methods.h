@@ -8,6 +8,7 @@
 //   citation:  where the idea comes from
 //   param:     log_density = 16 in [0, 50]: natural log of the facet density per unit UV area
 //   param:     blend = smooth in {linear, smooth}: an enumeration (stored as its index)
+//   map:       log_density = ln(density_per_uv)   (the glint material's quantity, glint_mapping.h)
 //   converge:  log_density=40
 //   */
 #pragma once

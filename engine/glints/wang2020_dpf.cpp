@@ -70,16 +70,17 @@ float coneIntegral(glm::vec3 axis, float gamma, int rings, F f) {
 // Cache I/O through core/cache_file.h: the header carries the resolution, alpha and base gamma, a checksum
 // covers the payload, and the values are checked (a DPF table holds finite values in [0, 1], Sec. 4.4 and the
 // clamp in generateDpf) before they are trusted.
-std::string cacheFileName(float alpha, DpfResolution res) {
+std::string cacheFileName(float alpha, DpfResolution res, ParticleNdf ndf) {
     char name[96];
-    std::snprintf(name, sizeof name, "wang2020_dpf_a%.3f_%dx%dx%d.bin", alpha, res.thetaI, res.thetaO, res.phi);
+    std::snprintf(name, sizeof name, "wang2020_dpf_%sa%.3f_%dx%dx%d.bin", ndf == ParticleNdf::Ggx ? "ggx_" : "", alpha,
+                  res.thetaI, res.thetaO, res.phi);
     return name;
 }
 
-cache::CacheKey cacheKey(float alpha, DpfResolution res) {
-    char parameters[128];
-    std::snprintf(parameters, sizeof parameters, "alpha=%.6f thetaI=%d thetaO=%d phi=%d gamma=%.6f rings=4", alpha,
-                  res.thetaI, res.thetaO, res.phi, kBaseGamma);
+cache::CacheKey cacheKey(float alpha, DpfResolution res, ParticleNdf ndf) {
+    char parameters[160];
+    std::snprintf(parameters, sizeof parameters, "alpha=%.6f thetaI=%d thetaO=%d phi=%d gamma=%.6f rings=4%s", alpha,
+                  res.thetaI, res.thetaO, res.phi, kBaseGamma, ndf == ParticleNdf::Ggx ? " ndf=ggx" : "");
     return {"wang2020-dpf", kCacheVersion, parameters};
 }
 
@@ -95,8 +96,8 @@ bool validDpfValues(std::string_view bytes) {
     return anyPositive;
 }
 
-bool readTable(const cache::CacheDir& dir, float alpha, DpfTable& table) {
-    std::optional<std::string> bytes = dir.load(cacheFileName(alpha, table.res), cacheKey(alpha, table.res),
+bool readTable(const cache::CacheDir& dir, float alpha, ParticleNdf ndf, DpfTable& table) {
+    std::optional<std::string> bytes = dir.load(cacheFileName(alpha, table.res, ndf), cacheKey(alpha, table.res, ndf),
                                                 table.res.size() * sizeof(float), validDpfValues);
     if (!bytes) return false;
     table.values.resize(table.res.size());
@@ -104,8 +105,8 @@ bool readTable(const cache::CacheDir& dir, float alpha, DpfTable& table) {
     return true;
 }
 
-bool writeTable(const cache::CacheDir& dir, float alpha, const DpfTable& table) {
-    return dir.store(cacheFileName(alpha, table.res), cacheKey(alpha, table.res),
+bool writeTable(const cache::CacheDir& dir, float alpha, ParticleNdf ndf, const DpfTable& table) {
+    return dir.store(cacheFileName(alpha, table.res, ndf), cacheKey(alpha, table.res, ndf),
                      std::string_view(reinterpret_cast<const char*>(table.values.data()), table.values.size() * sizeof(float)));
 }
 
@@ -121,18 +122,26 @@ float beckmannD(glm::vec3 m, float alpha) {
     return std::exp(-t2 / a2) / (kPi * a2 * c2 * c2);
 }
 
-float reflectionDensity(glm::vec3 wi, glm::vec3 wo, float alpha) {
+const char* particleNdfName(ParticleNdf ndf) { return ndf == ParticleNdf::Ggx ? "GGX" : "Beckmann"; }
+
+float ggxD(glm::vec3 m, float alpha) {
+    if (m.z <= 0.0f) return 0.0f;
+    float c2 = m.z * m.z, a2 = alpha * alpha, t = c2 * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * t * t);
+}
+
+float reflectionDensity(glm::vec3 wi, glm::vec3 wo, float alpha, ParticleNdf ndf) {
     glm::vec3 h = wi + wo;
     float len = glm::length(h);
     if (len < 1e-6f) return 0.0f;
     h /= len;
     float ih = std::abs(glm::dot(wi, h));
     if (ih < 1e-6f) return 0.0f;
-    return beckmannD(h, alpha) * h.z / (4.0f * ih);
+    return (ndf == ParticleNdf::Ggx ? ggxD(h, alpha) : beckmannD(h, alpha)) * h.z / (4.0f * ih);
 }
 
-float dpfByQuadrature(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int rings) {
-    return coneIntegral(wo, gamma, rings, [&](glm::vec3 o) { return reflectionDensity(wi, o, alpha); });
+float dpfByQuadrature(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int rings, ParticleNdf ndf) {
+    return coneIntegral(wo, gamma, rings, [&](glm::vec3 o) { return reflectionDensity(wi, o, alpha, ndf); });
 }
 
 float DpfTable::lookup(float thetaI, float thetaO, float phi) const {
@@ -164,7 +173,7 @@ float DpfTable::lookup(glm::vec3 wi, glm::vec3 wo) const {
     return lookup(ti, to, phi);
 }
 
-DpfTable generateDpf(float alpha, DpfResolution res, int threads) {
+DpfTable generateDpf(float alpha, DpfResolution res, int threads, ParticleNdf ndf) {
     DpfTable table;
     table.res = res;
     table.gamma = kBaseGamma;
@@ -175,7 +184,7 @@ DpfTable generateDpf(float alpha, DpfResolution res, int threads) {
             for (int p = 0; p < res.phi; ++p) {
                 glm::vec3 wo = sphericalDirection((to + 0.5f) * 0.5f * kPi / res.thetaO, (p + 0.5f) * kPi / res.phi);
                 table.values[(size_t(ti) * res.thetaO + to) * res.phi + p] =
-                    std::min(dpfByQuadrature(wi, wo, alpha, kBaseGamma, 4), 1.0f);
+                    std::min(dpfByQuadrature(wi, wo, alpha, kBaseGamma, 4, ndf), 1.0f);
             }
     });
     return table;
@@ -188,7 +197,7 @@ std::filesystem::path defaultDpfCacheDir() {
     return std::filesystem::temp_directory_path() / "glimmer";
 }
 
-DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cacheDir, int threads) {
+DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cacheDir, int threads, ParticleNdf ndf) {
     DpfSet set;
     set.fromCache = true;
     Stopwatch clock;
@@ -198,13 +207,14 @@ DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cach
         float alpha = kRoughnessSamples[k];
         DpfTable table;
         table.res = res;
-        if (!readTable(dir, alpha, table)) {
+        if (!readTable(dir, alpha, ndf, table)) {
             set.fromCache = false;
             Stopwatch one;
-            table = generateDpf(alpha, res, threads);
-            log::info("wang2020: DPF generation ", k + 1, "/", kRoughnessSamples.size(), " (alpha ", alpha, ", ",
+            table = generateDpf(alpha, res, threads, ndf);
+            log::info("wang2020: DPF generation ", k + 1, "/", kRoughnessSamples.size(), " (", particleNdfName(ndf),
+                      " alpha ", alpha, ", ",
                       res.thetaI, "x", res.thetaO, "x", res.phi, ") in ", one.elapsedMs(), " ms");
-            stored = writeTable(dir, alpha, table) && stored;
+            stored = writeTable(dir, alpha, ndf, table) && stored;
         }
         set.tables.push_back(std::move(table));
     }

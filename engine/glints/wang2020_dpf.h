@@ -21,6 +21,12 @@ constexpr float kDegree = kPi / 180.0f;
 constexpr std::array<float, 8> kRoughnessSamples = {0.02f, 0.04f, 0.1f, 0.2f, 0.4f, 0.6f, 0.8f, 1.0f};
 constexpr float kBaseGamma = 1.0f * kDegree;  // generation cone half-angle (Sec. 4.4)
 
+// The distribution of the particle normals. The paper uses Beckmann; Glimmer's materials are GGX by default, and a
+// Beckmann DPF under a GGX material puts 24-29 % more of the highlight's energy near its centre than the GGX
+// reference (README "The glint material", wang2020's mean), so the tables follow the material's NDF.
+enum class ParticleNdf { Beckmann, Ggx };
+const char* particleNdfName(ParticleNdf ndf);
+
 struct DpfResolution {
     int thetaI = 90, thetaO = 90, phi = 180;  // paper: 90 x 90 x 180
     size_t size() const { return size_t(thetaI) * thetaO * phi; }
@@ -42,17 +48,19 @@ struct DpfTable {
 // Beckmann D (normalized so that the projected area integrates to 1) and the reflection density of o given i:
 // p(o | i) = D(h) (h.n) / (4 |i.h|) (particles' normals distributed by D(m)(m.n), Jakob et al. 2014).
 float beckmannD(glm::vec3 m, float alpha);
-float reflectionDensity(glm::vec3 wi, glm::vec3 wo, float alpha);
+float ggxD(glm::vec3 m, float alpha);
+float reflectionDensity(glm::vec3 wi, glm::vec3 wo, float alpha, ParticleNdf ndf = ParticleNdf::Beckmann);
 
 // Direction for table coordinates (theta, phi): wi at phi = 0, wo at phi.
 glm::vec3 sphericalDirection(float theta, float phi);
 
 // P(i, o, gamma) by quadrature of the reflection density over the cone (the limit of counting infinitely many
 // particles, the WWH18 counting estimator's expectation). `rings` concentric rings.
-float dpfByQuadrature(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int rings);
+float dpfByQuadrature(glm::vec3 wi, glm::vec3 wo, float alpha, float gamma, int rings,
+                      ParticleNdf ndf = ParticleNdf::Beckmann);
 
 // Generates the table of one roughness at gamma = 1 degree with `threads` std::threads.
-DpfTable generateDpf(float alpha, DpfResolution res, int threads);
+DpfTable generateDpf(float alpha, DpfResolution res, int threads, ParticleNdf ndf = ParticleNdf::Beckmann);
 
 // The eight tables of the paper's roughness samples, loaded from `cacheDir` when present (file name carries the
 // resolution and a format version), generated (progress on the log, time stated) and saved otherwise.
@@ -61,7 +69,9 @@ struct DpfSet {
     double generationMs = 0.0;     // 0 when loaded from the cache
     bool fromCache = false;
 };
-DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cacheDir, int threads = 0);
+// Beckmann and GGX sets are cached under different names (Beckmann's keep the names of earlier versions).
+DpfSet loadOrGenerateDpfSet(DpfResolution res, const std::filesystem::path& cacheDir, int threads = 0,
+                            ParticleNdf ndf = ParticleNdf::Beckmann);
 // $GLIMMER_DPF_CACHE, else $XDG_CACHE_HOME/glimmer, else $HOME/.cache/glimmer, else the temp directory.
 std::filesystem::path defaultDpfCacheDir();
 

@@ -109,8 +109,12 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     if (materials.empty()) materials.push_back({});
     materials_ = gl::createBuffer(GLsizeiptr(materials.size() * sizeof(GpuMaterial)), materials.data(), 0);
     std::vector<GpuLight> lights;
-    for (const Light& l : scene.lights)
-        lights.push_back({{l.vector, float(int(l.type))}, {l.color, l.intensity}});
+    for (const Light& l : scene.lights) {
+        // KHR_lights_punctual's spot falloff as scale and offset of cos(angle) (scene/light_falloff.cpp).
+        float scale = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
+        lights.push_back({{l.vector, float(int(l.type))}, {l.color, l.intensity}, {l.spotDirection, scale},
+                          {-std::cos(l.outerConeAngle) * scale, l.range, 0.0f, 0.0f}});
+    }
     lightCount_ = int(lights.size());
     if (lights.empty()) lights.push_back({});
     lights_ = gl::createBuffer(GLsizeiptr(lights.size() * sizeof(GpuLight)), lights.data(), 0);

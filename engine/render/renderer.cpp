@@ -201,9 +201,37 @@ void Renderer::updateMethodData(bool measurePasses) {
     auto record = [&](const std::vector<std::pair<std::string, double>>& ran) {
         for (const auto& [name, ms] : ran) recordOnDemand(name, ms, measurePasses);
     };
-    if (methodResources_) record(methodResources_->update(settings_.methodValues(settings_.method)));
+    if (methodResources_) record(methodResources_->update(sharedMethodValues_));
     if (iblResources_ && environment_.enabled())
         record(iblResources_->update(settings_.iblModeValues(settings_.ibl), methodResources_.get()));
+}
+
+// The method's parameters of every material (glint material mapped, --set overrides on top: glint_mapping.h)
+// and the shared values its GPU data are built from.
+void Renderer::uploadMethodParams(const Scene& scene) {
+    const GlintMethod& method = findGlintMethod(settings_.method);
+    const ParamValues& overrides = settings_.methodValues(settings_.method);
+    sharedMethodValues_ = sharedParams(method, scene.materials, overrides);
+    std::vector<float> shared = packMethodParams(method, sharedMethodValues_);
+    glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(shared.size() * sizeof(float)), shared.data());
+    std::vector<float> rows;
+    rows.reserve((scene.materials.size() + 1) * kMaxMethodParams);
+    std::vector<ParamValues> perMaterial;
+    perMaterial.reserve(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        perMaterial.push_back(materialParams(method, m, overrides));
+        std::vector<float> row = packMethodParams(method, perMaterial.back());
+        rows.insert(rows.end(), row.begin(), row.end());
+        if (!m.glinty) perMaterial.back().clear();
+    }
+    if (methodResources_) methodResources_->setMaterials(perMaterial);
+    if (rows.empty()) rows = shared;
+    const GLsizeiptr bytes = GLsizeiptr(rows.size() * sizeof(float));
+    if (bytes > materialMethodParamsBytes_) {
+        materialMethodParams_ = gl::createBuffer(bytes, nullptr);
+        materialMethodParamsBytes_ = bytes;
+    }
+    glNamedBufferSubData(materialMethodParams_.id(), 0, bytes, rows.data());
 }
 
 void Renderer::recordOnDemand(const std::string& name, double ms, bool measurePasses) {
@@ -274,12 +302,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
                          settings_.common_("ambient"), 0.0f};
     uniforms.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(uniforms), &uniforms);
-    std::vector<float> params = packMethodParams(findGlintMethod(settings_.method), settings_.methodValues(settings_.method));
-    glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(params.size() * sizeof(float)), params.data());
+    uploadMethodParams(scene);
     std::vector<float> iblParams = packIblParams(ibl, settings_.iblModeValues(ibl.id));
     glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameUniforms_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, methodParams_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIAL_METHOD_PARAMS, materialMethodParams_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_IBL_PARAMS, iblParams_.id());
 
     const FrameContext frame{scene,        gpuScene,     camera,   settings_, targets_,

@@ -118,6 +118,7 @@ private:
     // On-demand data of the glint method and the IBL mode (tables, trees, the prefiltered environment of
     // wang2020), rebuilt between the G-buffer and the lighting pass; the passes that ran are listed in --stats.
     void updateMethodData(bool measurePasses);
+    void uploadMethodParams(const Scene& scene);
     void runPass(Pass& pass, const FrameContext& frame);
     // The frame, in order (programs() and render() walk this list).
     std::vector<Pass*> frame() const;
@@ -149,6 +150,9 @@ private:
     Environment environment_;
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_, iblParams_;
+    gl::Buffer materialMethodParams_;   // per-material method parameters (BINDING_MATERIAL_METHOD_PARAMS)
+    long long materialMethodParamsBytes_ = 0;
+    ParamValues sharedMethodValues_;    // what the method's shared GPU data are built from (glint_mapping.h)
     uint32_t sampleIndex_ = 0;
     gl::VertexArray emptyVao_;
     PassTimer timer_;

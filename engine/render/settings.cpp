@@ -28,6 +28,17 @@ const std::vector<CommonParam>& commonParams() {
         {{"material.density_scale", 1.0f, 0.0f, 1e6f, "glint density multiplier of every material", {}, false,
           true},
          true},
+        // The glint material (one vocabulary for every method; README "Glint material"), set on every material.
+        {{"material.glint_density", 2e6f, 0.0f, 1e14f, "glint facets per square metre of every material", {}, false,
+          true},
+         true},
+        {{"material.glint_angular_size", 0.015f, 0.0005f, 0.5f,
+          "gamma: half-angle (radians) of the cone around h in which one facet reflects, every material", {}, false,
+          true},
+         true},
+        {{"material.glint_anisotropy", 1.0f, 1.0f, 64.0f, "stretch of the glints along the tangent, every material"},
+         true},
+        {{"material.glint_color_variation", 0.0f, 0.0f, 1.0f, "per-glint colour variation of every material"}, true},
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
@@ -169,6 +180,12 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
         if (settings.isSet("material.glinty")) m.glinty = settings.common_("material.glinty") > 0.5f;
         if (settings.isSet("material.density_scale"))
             m.glintDensityScale = settings.common_("material.density_scale");
+        if (settings.isSet("material.glint_density")) m.glint.density = settings.common_("material.glint_density");
+        if (settings.isSet("material.glint_angular_size"))
+            m.glint.angularSize = settings.common_("material.glint_angular_size");
+        if (settings.isSet("material.glint_anisotropy")) m.glint.anisotropy = settings.common_("material.glint_anisotropy");
+        if (settings.isSet("material.glint_color_variation"))
+            m.glint.colorVariation = settings.common_("material.glint_color_variation");
     }
     float scale = settings.common_("light.intensity");
     for (Light& light : scene.lights) light.intensity *= scale;
@@ -210,7 +227,15 @@ std::string describeParams() {
         out << "\nMethod " << m.id << (m.isUserMethod() ? " (user method, " + displayPath(m.sourceFile) + ")" : "") << ": "
             << m.title << " [" << m.citation << "]\n";
         if (m.params.empty()) out << "  (no parameters)\n";
-        for (const ParamSpec& spec : m.params) line(m.id + "." + spec.name, spec, false);
+        for (const ParamSpec& spec : m.params) {
+            line(m.id + "." + spec.name, spec, false);
+            for (const ParamMapping& mapping : m.materialMapping)
+                if (mapping.param == spec.name)
+                    out << "      per material: " << mappingFormula(mapping) << " (" << mapping.why
+                        << "); --set overrides it on every material\n";
+        }
+        if (!m.sharedDataMaterial.empty())
+            out << "  shared GPU data are built for the glinty material with the largest " << m.sharedDataMaterial << "\n";
     }
     for (const IblMode& m : iblModes()) {
         out << "\nIBL mode " << m.id << (m.accumulates ? " (accumulates --spp samples)" : "") << ": " << m.title

@@ -22,6 +22,8 @@ static_assert(sizeof(FrameUniforms) == 4 * 64 + 6 * 16);
 struct GpuLight {               // std430, binding 1
     glm::vec4 vectorType;
     glm::vec4 colorIntensity;
+    glm::vec4 spotAxisScale;
+    glm::vec4 spotOffsetRange;
 };
 
 struct GpuMaterial {            // std430, binding 2

@@ -113,6 +113,10 @@ static Material glintyMetal(const std::string& name) {
     m.metallic = 1.0f;
     m.ndf = NdfType::Ggx;
     m.glinty = true;
+    // The glint material every method maps from (README "Glint material"): 2e6 facets per m^2 (UVs are metres
+    // here), each reflecting within 0.015 rad of h.
+    m.glint.density = 2e6f;
+    m.glint.angularSize = 0.015f;
     return m;
 }
 

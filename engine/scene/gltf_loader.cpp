@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "scene/gltf_glint_material.h"
 #include "scene/scene_limits.h"
 #include "scene/uv_transform.h"
 
@@ -38,7 +39,8 @@ std::string firstLine(const std::string& text) {
 enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
     static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
-                                                    "KHR_materials_emissive_strength"};
+                                                    "KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                                    "GLIMMER_materials_glint"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
@@ -337,6 +339,7 @@ public:
         walkNodes();
         if (scene_.instances.empty())
             throw Error(file_ + ": glTF has no mesh to render" + (skippedInstances_ ? " (every instance has a singular or out-of-range transform)" : ""));
+        measureSurfacePerUvArea(scene_);
         addFramingCameraAndLight();
         return std::move(scene_);
     }
@@ -489,6 +492,10 @@ private:
             m.emissive = glm::vec3(0.0f);
             warnings_.add("emission is off on materials whose emissive texture cannot be used");
         }
+        // GLIMMER_materials_glint or its extras form (gltf_glint_material.h); its density texture is linear.
+        readGlintMaterial(gm, m, file_,
+                          [&](int t) { return t >= 0 && size_t(t) < model_.textures.size() ? sceneTexture(t, false) : -2; },
+                          [&](const std::string& w) { warnings_.add(w); });
         return m;
     }
 
@@ -704,6 +711,7 @@ private:
                 }
             }
             if (node.camera >= 0) addCamera(element(model_.cameras, node.camera, "camera", file_), node, world);
+            if (int light = nodeLight(node, file_); light >= 0) gltfLights_.push_back(punctualLight(model_, light, world, file_));
             for (int child : node.children) visit(child, world, depth + 1);
             onPath[size_t(nodeIndex)] = false;
         };
@@ -792,8 +800,13 @@ private:
             names.insert(c.name);
             scene_.cameras.push_back(c);
         }
+        if (!gltfLights_.empty()) {
+            scene_.lights = gltfLights_;   // the model's own KHR_lights_punctual lights
+            return;
+        }
         // Key light above and to the right; a weaker fill from just beside the default camera, so metals (which
         // have no diffuse term and, without an environment, no ambient) still show their highlights.
+        scene_.fallbackLights = true;
         scene_.lights.push_back({LightType::Directional, glm::normalize(glm::vec3(0.5f, 0.8f, 0.6f)), glm::vec3(1.0f), 3.0f});
         glm::vec3 towardCamera = glm::normalize(camera.position - center);
         scene_.lights.push_back({LightType::Directional, glm::normalize(towardCamera + glm::vec3(-0.3f, 0.25f, 0.0f)),
@@ -807,6 +820,7 @@ private:
     std::map<std::tuple<int, bool, float, float, int>, int> textureCache_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> primitivesOfMesh_;
     std::vector<Camera> gltfCameras_;
+    std::vector<Light> gltfLights_;
     std::vector<std::pair<std::string, std::string>> imageFileProblems_;
     int defaultMaterial_ = -1;
     uint64_t totalVertices_ = 0, totalIndices_ = 0, skippedInstances_ = 0;

@@ -45,6 +45,17 @@ enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
 enum class NdfType : int { Ggx = 0, Beckmann = 1 };
 
+// One glint material in physical units, the same for every method (issue 17). Each method maps it to its own
+// parameters (engine/glints/glint_mapping.h, README "Glint material"); the base NDF and roughness are the
+// material's own (Material::ndf, Material::alpha). Defaults describe a medium-density metallic glitter.
+struct GlintMaterial {
+    float density = 2e6f;        // facets per square metre of surface (times the density mask texture)
+    float angularSize = 0.015f;  // gamma: half-angle in radians of the cone around h in which one facet reflects
+    glm::vec3 color{1.0f};       // linear tint of the glints (methods with per-glint colour)
+    float colorVariation = 0.0f; // 0 = every glint has `color`, 1 = fully random hues around it
+    float anisotropy = 1.0f;     // >= 1: glints stretched along the tangent by this factor
+};
+
 struct Material {
     std::string name;
     glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f};
@@ -52,7 +63,11 @@ struct Material {
     float metallic = 0.0f;
     NdfType ndf = NdfType::Ggx;
     bool glinty = false;       // the current glint method replaces D only on glinty materials
-    float glintDensityScale = 1.0f;  // multiplies the method's microfacet density (per material)
+    GlintMaterial glint;       // what the glints look like (used when glinty)
+    float glintDensityScale = 1.0f;  // multiplies the glint density (kept for scene files written before `glint`)
+    // Square metres of surface per unit UV area, so that densities per square metre become densities per UV area
+    // (what the methods count in). 1 for the built-in scenes (UVs in metres); glTF models measure it per material.
+    float surfacePerUvArea = 1.0f;
     float alphaCutoff = -1.0f; // >= 0: alpha mask
     bool blend = false;        // alphaMode BLEND: drawn by the transparent pass, not into the G-buffer
     // Emitted radiance (W sr^-1 m^-2 per unit, linear RGB): glTF emissiveFactor x KHR_materials_emissive_strength,
@@ -72,14 +87,26 @@ struct Material {
     glm::mat3 uvTransform{1.0f};  // KHR_texture_transform, applied to UV0 for every texture of the material
 };
 
-enum class LightType : int { Directional = 0, Point = 1 };
+enum class LightType : int { Directional = 0, Point = 1, Spot = 2 };
 
+// Punctual lights (KHR_lights_punctual semantics). The lighting pass computes each light's irradiance at normal
+// incidence (intensity / d^2 x range window x cone falloff); a per-light visibility (shadows) multiplies it.
 struct Light {
     LightType type = LightType::Directional;
-    glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction towards the light; point: position
+    glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction towards the light; point, spot: position
     glm::vec3 color{1.0f};
-    float intensity = 1.0f;               // directional: irradiance at normal incidence; point: intensity (W/sr-ish)
+    float intensity = 1.0f;               // directional: irradiance at normal incidence; point, spot: intensity / sr
+    glm::vec3 spotDirection{0.0f, -1.0f, 0.0f};  // spot: unit direction the light shines along
+    float innerConeAngle = 0.0f;          // spot: radians, full intensity inside
+    float outerConeAngle = 0.7853982f;    // spot: radians, zero outside (KHR_lights_punctual defaults)
+    float range = 0.0f;                   // point, spot: > 0 fades the light to zero at this distance; 0 = infinite
 };
+
+// KHR_lights_punctual's spot falloff: t = clamp((cos(angle to the axis) - cos outer) / (cos inner - cos outer)),
+// attenuation t^2 (the extension's recommended smooth falloff). Shared with lighting.frag (tests compare them).
+float spotAttenuation(float cosAngle, float innerConeAngle, float outerConeAngle);
+// The extension's recommended range window: clamp(1 - (d / range)^4, 0, 1)^2 (1 when range = 0).
+float rangeWindow(float distance, float range);
 
 struct Instance {
     uint32_t mesh = 0;
@@ -96,6 +123,7 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;   // first is the default
     std::vector<std::string> walkthrough;  // camera names in the order of a walkthrough path (may be empty)
+    bool fallbackLights = false;   // the lights are a default sun / key + fill, not the model's or the file's own
     std::string environment;       // "" = the procedural default sky, "none", or an image path
     glm::vec3 skyColor{0.0f};      // background and constant ambient radiance when no environment is active
     std::vector<std::string> methodFiles;  // user glint methods of a scene file ("methodFiles"), resolved paths

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/image_io.h"
+#include "core/log.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/mesh_builder.h"
@@ -199,7 +200,7 @@ int loadTexture(Scene& scene, const Reader& r, const Json& o, const char* key, c
 void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::string& where, Material& m) {
     r.checkKeys(o, where, {"name", "baseColor", "alpha", "roughness", "metallic", "ndf", "glinty", "glintDensityScale",
                            "alphaCutoff", "doubleSided", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
-                           "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees"});
+                           "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees", "glint"});
     if (o.contains("baseColor")) m.baseColor = r.colour(o["baseColor"], where + ".baseColor");
     if (o.contains("alpha") && o.contains("roughness")) r.fail(where, "give either alpha or roughness, not both");
     m.alpha = r.number(o, "alpha", where, m.alpha, 1e-3f, 1.0f);
@@ -216,6 +217,20 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
     }
     m.glinty = r.boolean(o, "glinty", where, m.glinty);
     m.glintDensityScale = r.number(o, "glintDensityScale", where, m.glintDensityScale, 0.0f, 1e6f);
+    if (o.contains("glint")) {
+        // The glint material, same keys and ranges as the glTF extension GLIMMER_materials_glint (its
+        // densityTexture is this file's glintMaskTexture); giving it makes the material glinty.
+        const Json& g = o["glint"];
+        std::string gw = where + ".glint";
+        if (!g.is_object()) r.fail(gw, "expected an object");
+        r.checkKeys(g, gw, {"density", "angularSize", "color", "colorVariation", "anisotropy"});
+        m.glint.density = r.number(g, "density", gw, m.glint.density, 0.0f, 1e14f);
+        m.glint.angularSize = r.number(g, "angularSize", gw, m.glint.angularSize, 0.0005f, 0.5f);
+        if (g.contains("color")) m.glint.color = glm::vec3(r.colour(g["color"], gw + ".color"));
+        m.glint.colorVariation = r.number(g, "colorVariation", gw, m.glint.colorVariation, 0.0f, 1.0f);
+        m.glint.anisotropy = r.number(g, "anisotropy", gw, m.glint.anisotropy, 1.0f, 64.0f);
+        m.glinty = r.boolean(o, "glinty", where, true);
+    }
     m.alphaCutoff = r.number(o, "alphaCutoff", where, m.alphaCutoff, -1.0f, 1.0f);
     m.doubleSided = r.boolean(o, "doubleSided", where, m.doubleSided);
     if (int t = loadTexture(scene, r, o, "baseColorTexture", where, true); t >= 0) m.baseColorTexture = t;
@@ -235,7 +250,8 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
 }
 
 Light readLight(const Reader& r, const Json& o, const std::string& where) {
-    r.checkKeys(o, where, {"type", "direction", "position", "color", "intensity"});
+    r.checkKeys(o, where, {"type", "direction", "position", "color", "intensity", "range", "innerConeAngle",
+                           "outerConeAngle"});
     Light light;
     std::string type = r.string(o, "type", where, "directional");
     if (type == "directional") {
@@ -248,9 +264,23 @@ Light readLight(const Reader& r, const Json& o, const std::string& where) {
         light.type = LightType::Point;
         if (!o.contains("position")) r.fail(where, "a point light needs \"position\"");
         light.vector = r.position(o["position"], where + ".position");
+    } else if (type == "spot") {
+        // KHR_lights_punctual's spot: cone angles in radians about `direction` (the way the light shines).
+        light.type = LightType::Spot;
+        if (!o.contains("position") || !o.contains("direction"))
+            r.fail(where, "a spot light needs \"position\" and \"direction\" (the way it shines)");
+        light.vector = r.position(o["position"], where + ".position");
+        glm::vec3 d = r.vec<3>(o["direction"], where + ".direction");
+        if (glm::length(d) < 1e-6f) r.fail(where + ".direction", "must not be zero");
+        light.spotDirection = glm::normalize(d);
+        light.outerConeAngle = r.number(o, "outerConeAngle", where, light.outerConeAngle, 1e-4f, 1.5707964f);
+        light.innerConeAngle = r.number(o, "innerConeAngle", where, 0.0f, 0.0f, 1.5707964f);
+        if (!(light.innerConeAngle < light.outerConeAngle))
+            r.fail(where + ".innerConeAngle", "must be smaller than outerConeAngle");
     } else {
-        r.fail(where + ".type", "expected \"directional\" or \"point\"");
+        r.fail(where + ".type", "expected \"directional\", \"point\" or \"spot\"");
     }
+    if (type != "directional") light.range = r.number(o, "range", where, 0.0f, 0.0f, 1e7f);
     if (o.contains("color")) light.color = glm::vec3(r.colour(o["color"], where + ".color", 1e6f));
     light.intensity = r.number(o, "intensity", where, 1.0f, 0.0f, 1e9f);
     return light;
@@ -273,7 +303,7 @@ Camera readCamera(const Reader& r, const Json& o, const std::string& where) {
 }
 
 // Appends a glTF file's meshes, materials, textures and instances (under `transform`) to the scene.
-void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string& where) {
+void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string& where, std::vector<Light>& modelLights) {
     r.checkKeys(o, where, {"gltf", "translation", "rotationDegrees", "scale", "glinty", "glintDensityScale"});
     if (!o.contains("gltf")) r.fail(where, "a model needs \"gltf\" (a path relative to the scene file)");
     std::filesystem::path path = r.path(o, "gltf", where);
@@ -297,6 +327,32 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
     }
     for (const Instance& instance : model.instances)
         scene.instances.push_back({instance.mesh + meshBase, instance.material + materialBase, transform * instance.transform});
+    // Glint densities are per square metre: a scaled model has more surface per unit UV area.
+    float areaScale = std::pow(std::abs(glm::determinant(glm::mat3(transform))), 2.0f / 3.0f);
+    for (size_t i = materialBase; i < scene.materials.size(); ++i) scene.materials[i].surfacePerUvArea *= areaScale;
+    // The model's cameras (its framing camera, named after the file, and its own) and its KHR_lights_punctual
+    // lights come along under the model's transform; a `cameras` key replaces them, `lights` adds to them.
+    for (Camera c : model.cameras) {
+        if (c.name == "default") c.name = path.stem().string();
+        std::string base = c.name;
+        for (int k = 2; std::any_of(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& o) { return o.name == c.name; }); ++k)
+            c.name = base + "_" + std::to_string(k);
+        c.position = glm::vec3(transform * glm::vec4(c.position, 1.0f));
+        c.target = glm::vec3(transform * glm::vec4(c.target, 1.0f));
+        c.up = glm::normalize(glm::vec3(transform * glm::vec4(c.up, 0.0f)));
+        scene.cameras.push_back(c);
+    }
+    if (!model.fallbackLights)
+        for (Light light : model.lights) {
+            if (light.type == LightType::Directional) {
+                light.vector = glm::normalize(glm::vec3(transform * glm::vec4(light.vector, 0.0f)));
+            } else {
+                light.vector = glm::vec3(transform * glm::vec4(light.vector, 1.0f));
+                light.spotDirection = glm::normalize(glm::vec3(transform * glm::vec4(light.spotDirection, 0.0f)));
+            }
+            scene.lights.push_back(light);
+            modelLights.push_back(light);
+        }
 }
 
 uint32_t findByName(const Reader& r, const std::vector<std::string>& names, const Json& o, const char* key, const std::string& where) {
@@ -385,7 +441,8 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     scene.methodFiles = methodFilesOf(r, doc, path);
 
     const Json& models = array("models");
-    for (size_t i = 0; i < models.size(); ++i) mergeModel(scene, r, models[i], at("models", i));
+    std::vector<Light> modelLights;
+    for (size_t i = 0; i < models.size(); ++i) mergeModel(scene, r, models[i], at("models", i), modelLights);
     const Json& meshes = array("meshes");
     for (size_t i = 0; i < meshes.size(); ++i) scene.meshes.push_back(generatedMesh(r, meshes[i], at("meshes", i)));
 
@@ -420,9 +477,15 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     }
 
     if (doc.contains("lights")) {
-        scene.lights.clear();
+        scene.lights.clear();   // replaces the base scene's lights; the models' own lights stay
         const Json& lights = array("lights");
         for (size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(readLight(r, lights[i], at("lights", i)));
+        scene.lights.insert(scene.lights.end(), modelLights.begin(), modelLights.end());
+    }
+    if (scene.lights.empty()) {
+        log::info(path.string(), ": no lights in the scene file or its models; lit by a default sun");
+        scene.lights.push_back({LightType::Directional, glm::normalize(glm::vec3(0.5f, 0.8f, 0.6f)), glm::vec3(1.0f), 3.0f});
+        scene.fallbackLights = true;
     }
     if (doc.contains("cameras")) {
         scene.cameras.clear();

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "core/files.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -43,7 +44,11 @@ Scene loadScene(const std::string& nameOrPath) {
     if (ext != ".gltf" && ext != ".glb" && ext != ".json")
         throw UsageError("--scene: " + nameOrPath + ": unsupported scene type (use .json, .gltf, .glb or a scene name)");
     if (!std::filesystem::exists(path)) throw Error(nameOrPath + ": scene file not found");
-    return ext == ".json" ? loadSceneFile(path) : loadGltfScene(path);
+    if (ext == ".json") return loadSceneFile(path);
+    Scene scene = loadGltfScene(path);
+    if (scene.fallbackLights)
+        log::info(nameOrPath, ": the model has no KHR_lights_punctual light; lit by a default key and fill light");
+    return scene;
 }
 
 std::vector<std::string> sceneMethodFiles(const std::string& nameOrPath) {

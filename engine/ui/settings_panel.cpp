@@ -1,5 +1,7 @@
 #include "ui/settings_panel.h"
 
+#include "glints/glint_mapping.h"
+
 #include <algorithm>
 
 #include "core/files.h"
@@ -61,6 +63,15 @@ bool panelHidesParameter(const std::string& name) {
     return false;
 }
 
+// A method parameter fed by the material's base NDF (wang2020's `ndf`): the material overrides section edits
+// that NDF (material.ndf) for every method at once, and a second control for it would push the last section
+// header off a 720-line window (PanelFit). `--set <method>.ndf` still works.
+static bool panelHidesMethodParameter(const GlintMethod& method, const std::string& name) {
+    for (const ParamMapping& m : method.materialMapping)
+        if (m.param == name && m.quantity == GlintQuantity::Ndf) return true;
+    return false;
+}
+
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
     std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
@@ -94,6 +105,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
             if (method.isUserMethod()) ui.label("file " + displayPath(method.sourceFile));
             if (method.params.empty()) ui.label("(no parameters)");
             for (const ParamSpec& spec : method.params) {
+                if (panelHidesMethodParameter(method, spec.name)) continue;
                 float value = paramOr(settings.methodValues(method.id), spec);
                 Edit edit = ui.slider(spec.name, spec, value);
                 if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;

@@ -6,7 +6,8 @@
 #define BINDING_FRAME 0              // uniform FrameBlock (common/frame.glsl; C++ FrameUniforms)
 #define BINDING_LIGHTS 1             // storage LightBlock
 #define BINDING_MATERIALS 2          // storage MaterialBlock
-#define BINDING_METHOD_PARAMS 3      // uniform: the glint method's parameters (P_<NAME>)
+#define BINDING_METHOD_PARAMS 3      // uniform: the glint method's shared parameters (PS_<NAME>; P_<NAME> outside lighting)
+#define BINDING_MATERIAL_METHOD_PARAMS 3  // storage (not the uniform 3 above): the method's parameters per material (P_<NAME> in lighting)
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)

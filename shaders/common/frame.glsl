@@ -14,10 +14,13 @@ layout(std140, binding = BINDING_FRAME) uniform FrameBlock {
                              // at the unjittered pixel centre (taa.stable_glints; docs/image.md)
 };
 
-// Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position).
+// Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position),
+// 2 spot (position; KHR_lights_punctual cone).
 struct GpuLight {
     vec4 vectorType;         // xyz vector, w type
     vec4 colorIntensity;     // rgb colour, a intensity
+    vec4 spotAxisScale;      // spot: xyz unit direction the light shines along, w 1 / max(0.001, cos inner - cos outer)
+    vec4 spotOffsetRange;    // x spot: -cos(outer) * scale; y range (0 = infinite)
 };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight u_lights[]; };
 

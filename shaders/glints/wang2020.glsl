@@ -1,7 +1,7 @@
 // Wang, Deng & Holzschuch 2020, "Real-time glints rendering with prefiltered discrete stochastic microfacets":
 // the three-scale glint pass (Sec. 4.3) for point and directional lights through the DPF (Sec. 5, Eq. 21).
-// Data (engine/glints/wang2020_resources.cpp): the DPF P(i, o, gamma) accumulated for the material's roughness
-// and gamma (Sec. 4.4; 3D texture: x = phi_o - phi_i in [0, 180] deg, y = theta_o, z = theta_i in [0, 90) deg)
+// Data (engine/glints/wang2020_resources.cpp): the DPF P(i, o, gamma) accumulated for each material's roughness
+// and NDF at the shared gamma (Sec. 4.4; 3D texture: x = phi_o - phi_i in [0, 180] deg, y = theta_o, z = theta_i in [0, 90) deg)
 // and the particle quadtree (counts per node, level by level; engine/glints/wang2020_quadtree.h). Particle
 // positions and lambda come from the same integer hashes as the CPU reference.
 //
@@ -18,7 +18,7 @@
 // abrupt change of texture at the thresholds (sparse glints -> uniform sheen) by a gradual one.
 // Eq. 3 with Eq. 4: f = (i.h) F D^ G / (a(A) sigma(Omega_o) (i.n)(o.n)), D^ = count / N. lighting.frag computes
 // D G F / (4 (i.n)(o.n)), so glintD returns D_eq = 4 (i.h) D^ / (a(A) sigma(Omega_o) (h.n)). The 1 / (h.n) is ours:
-// particle normals follow D(m)(m.n) (projected area), so this makes E[D_eq] = D_Beckmann(h) as the interface asks.
+// particle normals follow D(m)(m.n) (projected area), so this makes E[D_eq] = D(h) of the particles' NDF (the material's: GGX or Beckmann) as the interface asks.
 // Deviations: the paper's tree nodes store id, count, depth, child count and AABB (two float4); ours is an
 // implicit complete tree of counts. The traversal gathers once per pixel in glintSetup (the paper's two-step
 // traversal with a tree cut, Sec. 5), so lights only compare lambdas.
@@ -29,6 +29,13 @@
 
 layout(binding = UNIT_METHOD_FIRST) uniform sampler3D u_wangDpf;
 layout(std430, binding = BINDING_METHOD_FIRST) readonly buffer WangQuadtree { uint u_wangCounts[]; };
+// One accumulated DPF per distinct (NDF, roughness) of the glinty materials, stacked along z (slot k holds theta_i
+// rows [k T, (k + 1) T)), and each material's slot; slot 0 is the shared values' table (u_wangDpf).
+layout(binding = UNIT_METHOD_FIRST + 1) uniform sampler3D u_wangDpfStack;
+layout(std430, binding = BINDING_METHOD_FIRST + 1) readonly buffer WangMaterialSlots {
+    uvec4 u_wangStack;   // slot count, theta_i rows per slot
+    uint u_wangMaterialSlot[];
+};
 
 #define WANG_MAX_LAMBDAS 16
 #define WANG_STACK 48
@@ -80,11 +87,12 @@ GlintPixel glintSetup(GlintSurface s) {
     for (int i = 0; i < WANG_MAX_LAMBDAS; ++i) px.lambdas[i] = 1.0;
     float det = s.duvdx.x * s.duvdy.y - s.duvdx.y * s.duvdy.x;
     px.area = abs(det);
-    // Per-material density (material scale x glint mask, clamped to 1): independent thinning of the tree's
-    // particles (particle k kept when its hash channel 5 is below the scale), so N x scale particles per unit UV
-    // square without a per-material tree. Scale 1 keeps every particle (the CPU reference's case).
-    float keep = clamp(s.densityScale, 0.0, 1.0);
-    px.expected = P_PARTICLES * keep * px.area;
+    // Per-material density (this material's N over the tree's N, x material scale x glint mask, clamped to 1):
+    // independent thinning of the tree's particles (particle k kept when its hash channel 5 is below the keep
+    // fraction), so N x scale particles per unit UV square without a per-material tree. The tree is built for the
+    // densest glinty material (PS_PARTICLES, GlintMethod::sharedDataMaterial); keep 1 is the CPU reference's case.
+    float keep = clamp(s.densityScale * P_PARTICLES / max(PS_PARTICLES, 1e-30), 0.0, 1.0);
+    px.expected = PS_PARTICLES * keep * px.area;
     px.scale = px.expected < P_MICRO_MAX ? WANG_SCALE_MICRO
              : (px.expected > P_MACRO_MIN ? WANG_SCALE_MACRO : WANG_SCALE_MESO);
     if (px.scale == WANG_SCALE_MESO && P_TRANSITION > 0.0) {
@@ -107,7 +115,7 @@ GlintPixel glintSetup(GlintSurface s) {
     mat2 inverseJ = inverse(mat2(s.duvdx, s.duvdy));
     vec2 halfExtent = 0.5 * (abs(s.duvdx) + abs(s.duvdy));
     vec2 lo = s.uv - halfExtent, hi = s.uv + halfExtent;
-    int depth = int(P_DEPTH + 0.5);
+    int depth = int(PS_DEPTH + 0.5);   // the shared tree's depth
     float extent = max(2.0 * max(halfExtent.x, halfExtent.y), 1e-30);
     int startLevel = clamp(int(floor(-log2(extent))), 0, depth);
     float cells = exp2(float(startLevel));
@@ -160,7 +168,12 @@ float wangDpf(vec3 wi, vec3 wo) {
     float thetaI = acos(clamp(wi.z, -1.0, 1.0)), thetaO = acos(clamp(wo.z, -1.0, 1.0));
     float phi = abs(atan(wo.y, wo.x) - atan(wi.y, wi.x));
     if (phi > PI) phi = 2.0 * PI - phi;
-    return texture(u_wangDpf, vec3(phi / PI, thetaO / (0.5 * PI), thetaI / (0.5 * PI))).r;
+    // The table of this pixel's material (g_glintMaterial, lighting.frag; -1 outside it: the shared table).
+    uint slot = g_glintMaterial >= 0 && uint(g_glintMaterial) < uint(u_wangMaterialSlot.length())
+                    ? min(u_wangMaterialSlot[g_glintMaterial], u_wangStack.x - 1u) : 0u;
+    float rows = float(u_wangStack.y);
+    float z = clamp(thetaI / (0.5 * PI) * rows, 0.5, rows - 0.5) + float(slot) * rows;   // no blend across slots
+    return texture(u_wangDpfStack, vec3(phi / PI, thetaO / (0.5 * PI), z / (rows * float(u_wangStack.x)))).r;
 }
 
 // Particles of the footprint that reflect, for acceptance probability P (P(i, o, gamma) for lights, the filtered
@@ -183,7 +196,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     if (px.expected <= 0.0 || h.z <= 1e-4 || s.densityScale <= 0.0) return 0.0;
     float P = min(wangDpf(wi, wo), 1.0);
     float reflecting = wangReflectingCount(px, P);
-    float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
+    float sigmaO = 2.0 * PI * (1.0 - cos(PS_GAMMA * PI / 180.0));   // the shared table's gamma
     float D = 4.0 * max(dot(wi, h), 0.0) * reflecting / (px.expected * sigmaO * h.z);
     return isnan(D) || isinf(D) ? 0.0 : D;
 }

@@ -80,7 +80,7 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
 #ifdef GLINT_METHOD_WANG2020
     if (glinty && glint.expected > 0.0 && wo.z > 0.0) {
         vec4 table = wangGlintTable(s.n, toEyeWorld);
-        float sigmaO = 2.0 * PI * (1.0 - cos(P_GAMMA * PI / 180.0));
+        float sigmaO = 2.0 * PI * (1.0 - cos(PS_GAMMA * PI / 180.0));   // the shared table's gamma
         float filteredP = clamp(table.a, 1e-8, 1.0);
         // Eq. 20 (micro), Eq. 18 (meso), macro, with the transition bands of the glint method: all three are
         // (reflecting count) / (a(A) sigma N P^) with the count for acceptance probability P^.

@@ -17,7 +17,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.defines = {method.define, ibl.define};
     if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
     if (shadows) desc.defines.push_back("SHADOWS");
-    desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(ibl);
+    desc.preamble = methodParamsGlsl(method, true) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
     desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
     return desc;
