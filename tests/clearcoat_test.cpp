@@ -205,3 +205,40 @@ TEST(Clearcoat, ZeroIsNoCoatAndGlintsAreAttenuatedLikeTheBase) {
     EXPECT_NE(plainSum, coatedSum);
     std::printf("glints under the coat: worst relative error %.2e over %d pixels\n", worst, size * size);
 }
+
+// The coat's environment lobe (default IBL mode, prefiltered): under a constant environment L and no light, a
+// mirror-smooth coat adds c Fc L (its split-sum albedo A + B is 1 up to the table's precision) and scales the
+// base by 1 - c Fc, pixel by pixel against the uncoated render.
+TEST(Clearcoat, EnvironmentLobeReflectsAConstantSky) {
+    const int size = 64;
+    auto render = [&](std::initializer_list<const char*> coat) {
+        RenderRequest request = planeRequest("plane90", size, {"material.glinty=0", "material.metallic=0.4",
+            "material.alpha=0.25", "light.intensity=0", "ao.enabled=0", "probes.enabled=0"});
+        request.environment = "constant:0.5,0.6,0.7";
+        for (const char* s : coat) request.settings.apply(s);
+        return renderOffscreen(request);
+    };
+    RenderResult plain = render({});
+    RenderResult coated = render({"material.clearcoat=1", "material.clearcoat_roughness=0"});
+    Scene scene = makeBuiltinScene("plane90");
+    const Camera& camera = scene.cameras.front();
+    reference::ClearcoatLayer coat;
+    coat.clearcoat = 1.0;
+    const glm::dvec3 sky(0.5, 0.6, 0.7);
+    double worst = 0.0;
+    for (int y = 2; y < size; y += 6)
+        for (int x = 1; x < size; x += 6) {
+            Ray ray = cameraRay(camera, size, size, x + 0.5, y + 0.5);
+            double w = reference::clearcoatWeight(coat, -ray.direction.y);   // n_c = +y
+            size_t i = (size_t(y) * size + x) * 4;
+            for (int c = 0; c < 3; ++c) {
+                double expected = plain.hdr[i + c] * (1.0 - w) + w * sky[c];
+                double err = std::abs(coated.hdr[i + c] - expected) / expected;
+                worst = std::max(worst, err);
+                EXPECT_LT(err, 5e-3) << "pixel " << x << "," << y << ": " << coated.hdr[i + c] << " expected "
+                                     << expected << " (uncoated " << plain.hdr[i + c] << ")";
+            }
+            EXPECT_GT(std::abs(coated.hdr[i] - plain.hdr[i]), 1e-3 * plain.hdr[i]);   // the coat is visible
+        }
+    std::printf("coat under a constant sky: worst relative error %.2e\n", worst);
+}
