@@ -4,10 +4,13 @@
 //   0 RGBA32F  uv.xy, duv/dx.xy        1 RGBA32F  duv/dy.xy, material id, bitangent sign
 //   2 RGBA16F  normal.xyz, alpha       3 RGBA16F  tangent.xyz, metallic
 //   4 RGBA8    base colour.rgb, glint density mask
+//   5 RGBA16F  clear coat normal (octahedral).xy, clear coat, clear coat roughness (KHR_materials_clearcoat;
+//              zero on uncoated materials; the lighting pass reads it at UNIT_GBUFFER_CLEARCOAT)
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/footprint.glsl"
 #include "common/material_textures.glsl"
+#include "common/octahedral.glsl"
 
 in vec3 v_normal;
 in vec4 v_tangent;
@@ -15,7 +18,8 @@ in vec2 v_uv;
 in vec4 v_color;
 
 layout(location = 2) uniform int u_materialIndex;
-layout(location = 3) uniform int u_textureMask;     // bit 0 base colour, 1 metal-rough, 2 normal, 3 occlusion, 4 glint mask
+layout(location = 3) uniform int u_textureMask;     // bit 0 base colour, 1 metal-rough, 2 normal, 3 occlusion, 4 glint mask,
+                                                    // 6 clear coat, 7 clear coat roughness, 8 clear coat normal
 layout(location = 4) uniform mat3 u_uvTransform;    // KHR_texture_transform for texture lookups only
 
 layout(binding = UNIT_MATERIAL_BASE_COLOR) uniform sampler2D t_baseColor;
@@ -23,12 +27,16 @@ layout(binding = UNIT_MATERIAL_METALLIC_ROUGHNESS) uniform sampler2D t_metallicR
 layout(binding = UNIT_MATERIAL_NORMAL) uniform sampler2D t_normal;
 layout(binding = UNIT_MATERIAL_OCCLUSION) uniform sampler2D t_occlusion;
 layout(binding = UNIT_MATERIAL_GLINT_MASK) uniform sampler2D t_glintMask;
+layout(binding = UNIT_MATERIAL_CLEARCOAT) uniform sampler2D t_clearcoat;                     // R
+layout(binding = UNIT_MATERIAL_CLEARCOAT_ROUGHNESS) uniform sampler2D t_clearcoatRoughness;  // G
+layout(binding = UNIT_MATERIAL_CLEARCOAT_NORMAL) uniform sampler2D t_clearcoatNormal;
 
 layout(location = 0) out vec4 o_uvDuvdx;
 layout(location = 1) out vec4 o_duvdyMaterial;
 layout(location = 2) out vec4 o_normalAlpha;
 layout(location = 3) out vec4 o_tangentMetallic;
 layout(location = 4) out vec4 o_baseColorMask;
+layout(location = 5) out vec4 o_clearcoat;
 
 void main() {
     GpuMaterial material = u_materials[u_materialIndex];
@@ -56,6 +64,17 @@ void main() {
     vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
     t = dot(t, t) > 1e-12 ? normalize(t) : normalize(cross(abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), n));
     float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
+    // KHR_materials_clearcoat: without its own normal texture the coat follows the geometric normal, not the
+    // base's normal map (a smooth varnish over a bumpy paint).
+    float clearcoat = material.densityCutoff.z;
+    float clearcoatRoughness = material.densityCutoff.w;
+    if ((u_textureMask & 64) != 0) clearcoat *= sampleTexture(t_clearcoat, textureUv, footprint).r;
+    if ((u_textureMask & 128) != 0) clearcoatRoughness *= sampleTexture(t_clearcoatRoughness, textureUv, footprint).g;
+    vec3 coatNormal = n;
+    if ((u_textureMask & 256) != 0) {
+        vec3 tn = sampleTexture(t_clearcoatNormal, textureUv, footprint).xyz * 2.0 - 1.0;
+        coatNormal = normalize(tn.x * t + tn.y * (bitangentSign * cross(n, t)) + tn.z * n);
+    }
     if ((u_textureMask & 4) != 0) {
         vec3 tn = sampleTexture(t_normal, textureUv, footprint).xyz * 2.0 - 1.0;
         vec3 b = bitangentSign * cross(n, t);
@@ -68,4 +87,5 @@ void main() {
     o_normalAlpha = vec4(n, max(alpha, 1e-4));
     o_tangentMetallic = vec4(t, metallic);
     o_baseColorMask = vec4(baseColor.rgb, glintMask);
+    o_clearcoat = clearcoat > 0.0 ? vec4(octahedralEncode(coatNormal), clearcoat, clearcoatRoughness) : vec4(0.0);
 }

@@ -8,6 +8,7 @@
 #include "common/footprint.glsl"
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
+#include "common/clearcoat.glsl"
 #ifdef SHADOWS
 #include "common/shadows.glsl"
 #endif
@@ -32,6 +33,7 @@ layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
 layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
 layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
 layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+layout(binding = UNIT_GBUFFER_CLEARCOAT) uniform sampler2D g_clearcoat;   // KHR_materials_clearcoat (gbuffer.frag)
 // rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
 layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
 
@@ -171,6 +173,15 @@ void main() {
     vec3 f0 = mix(vec3(0.04), baseColor, metallic);
     vec3 diffuseAlbedo = (1.0 - metallic) * baseColor;
 
+    // KHR_materials_clearcoat (common/clearcoat.glsl): the coat's own lobe goes to coatRadiance; the base radiance
+    // (all of it, the method's glints included) is scaled by 1 - weight at the end. Uncoated pixels (weight 0)
+    // skip both, so their radiance is the uncoated shader's bit for bit.
+    vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
+    Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
+    vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
+    bool coated = coat.weight > 0.0;
+    vec3 coatRadiance = vec3(0.0);
+
     // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7).
     GlintPixel glint = glintSetup(s);
 
@@ -181,6 +192,18 @@ void main() {
     vec3 radiance = occlusion.rgb * (envEnabled()
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
+    if (coated) {
+        // The coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror
+        // direction, from the prefiltered map and the reflection probes where the frame binds them (count 0
+        // otherwise); GGX table with F0 = 1 (the Fresnel is in the weight). Without an environment the constant
+        // ambient is reflected with the lobe's albedo taken as 1.
+        vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
+        if (envEnabled()) {
+            vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
+            coatEnvironment = envPrefilteredAt(position, reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
+        }
+        coatRadiance += occlusion.rgb * coat.weight * coatEnvironment;
+    }
     float firstLightD = 0.0;
     float firstLightVisibility = 0.0;
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
@@ -190,7 +213,9 @@ void main() {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
-        if (wi.z <= 0.0 || wo.z <= 0.0) continue;
+        // A coated pixel may see a light through its coat that its (normal-mapped) base faces away from.
+        bool coatLit = coated && dot(coat.n, towardLight) > 0.0 && coat.nDotV > 0.0;
+        if ((wi.z <= 0.0 || wo.z <= 0.0) && !coatLit) continue;
         // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
         // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
 #ifdef SHADOWS
@@ -201,6 +226,8 @@ void main() {
         if (i == 0) firstLightVisibility = visibility;
         if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
         irradiance *= visibility;
+        if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
+        if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
@@ -223,6 +250,16 @@ void main() {
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
 
+    if (coated) {
+        float baseShare = 1.0 - coat.weight;
+        radiance = radiance * baseShare + coatRadiance;
+        glintPart *= baseShare;
+        lightGlints *= baseShare;
+#ifdef GLINT_POST_PASS
+        g_postEnvironmentGlint *= baseShare;
+#endif
+    }
+
     vec4 result;
     switch (view) {
         case VIEW_ALBEDO: result = vec4(baseColor, 1.0); break;
@@ -238,6 +275,7 @@ void main() {
         case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
         case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
         case VIEW_SHADOW: result = vec4(vec3(firstLightVisibility), 1.0); break;
+        case VIEW_CLEARCOAT: result = coatTexelView; break;
         default: result = vec4(radiance, 1.0); break;
     }
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);

@@ -246,11 +246,14 @@ TEST(ScenesGltf, EveryModelRendersSomethingVaried) {
 TEST(ScenesGltf, ModelTexturesAreDecodedAndTransformsRead) {
     fs::path car = assetsDir() / "models" / "ClearCoatCarPaint" / "glTF" / "ClearCoatCarPaint.gltf";
     if (!fs::exists(car)) GTEST_SKIP() << car << " missing";
-    // Requires KHR_materials_clearcoat (ignored with a warning) and KHR_texture_transform (scale 3 on the
-    // normal map), and normalTexture.scale = 0.2 (baked into the texture).
+    // Requires KHR_materials_clearcoat (factor 1, roughness 0, no coat textures) and KHR_texture_transform
+    // (scale 3 on the normal map), and normalTexture.scale = 0.2 (baked into the texture).
     Scene scene = glimmer::loadGltfScene(car);
     ASSERT_EQ(scene.materials.size(), 1u);
     const glimmer::Material& m = scene.materials[0];
+    EXPECT_EQ(m.clearcoat, 1.0f);
+    EXPECT_EQ(m.clearcoatRoughness, 0.0f);
+    EXPECT_EQ(m.clearcoatNormalTexture, -1);
     ASSERT_GE(m.normalTexture, 0);
     glm::vec3 uv = m.uvTransform * glm::vec3(0.1f, 0.2f, 1.0f);
     EXPECT_NEAR(uv.x, 0.3f, 1e-6f);

@@ -20,6 +20,7 @@ const std::vector<AovInfo>& aovTable() {
         {"extra", 11, "method-specific debug channel (see the method's documentation)"},
         {"ao", 13, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},
         {"shadow", 12, "visibility of the first light, 0..1 (shadow maps; 0 where the surface faces away from it)"},
+        {"clearcoat", 14, "KHR_materials_clearcoat: R intensity c, G perceptual roughness, B the coat's share c Fc"},
         {"glintscale", 11, "wang2020: scale used per pixel, red micro, green meso, blue macro (= its extra view)"},
     };
     return table;

@@ -29,12 +29,16 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
     height_ = height;
     glintEnvironment_ = {};  // reallocated below at the new size when needed
     glintPart_ = {};
-    static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
+    // Target 5, the clear coat: half floats keep the coat normal's octahedral code fine enough for a mirror-like
+    // coat (8 bits would band its highlight); 8 bytes a pixel.
+    static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8,
+                                                       GL_RGBA16F};
     for (int i = 0; i < kGBufferColorCount; ++i) gbuffer_[i] = gl::createTexture2D(formats[i], width, height);
-    static_assert(kGBufferColorCount == 5, "attachments below");
+    static_assert(kGBufferColorCount == 6, "attachments below");
     depth_ = gl::createTexture2D(GL_DEPTH_COMPONENT32F, width, height);
     gbufferFbo_ = gl::createFramebuffer(
-        "gbuffer", {gbuffer_[0].id(), gbuffer_[1].id(), gbuffer_[2].id(), gbuffer_[3].id(), gbuffer_[4].id()},
+        "gbuffer", {gbuffer_[0].id(), gbuffer_[1].id(), gbuffer_[2].id(), gbuffer_[3].id(), gbuffer_[4].id(),
+                     gbuffer_[5].id()},
         depth_.id());
     hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
     hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()});

@@ -6,7 +6,9 @@ namespace glimmer {
 
 class FrameTargets {
 public:
-    static constexpr int kGBufferColorCount = 5;
+    // Target 5 (KHR_materials_clearcoat) is read by the lighting pass at UNIT_GBUFFER_CLEARCOAT, not at
+    // UNIT_GBUFFER_FIRST + 5 (the depth): see gbufferUnit().
+    static constexpr int kGBufferColorCount = 6;
 
     // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets, and
     // `glintPart` the glint part target of TAA (below).

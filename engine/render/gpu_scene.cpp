@@ -105,7 +105,7 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     std::vector<GpuMaterial> materials;
     for (const Material& m : scene.materials)
         materials.push_back({m.baseColor, {m.alpha, m.metallic, float(int(m.ndf)), m.glinty ? 1.0f : 0.0f},
-                             {m.glintDensityScale, m.alphaCutoff, 0.0f, 0.0f}});
+                             {m.glintDensityScale, m.alphaCutoff, m.clearcoat, m.clearcoatRoughness}});
     if (materials.empty()) materials.push_back({});
     materials_ = gl::createBuffer(GLsizeiptr(materials.size() * sizeof(GpuMaterial)), materials.data(), 0);
     std::vector<GpuLight> lights;
@@ -158,6 +158,20 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
         if (index >= 0 && index < int(textures_.size())) {
             glBindTextureUnit(unit, textures_[index].id());
             mask |= 1 << unit;
+        }
+    }
+    if (!forward && normalMatrix) {
+        // KHR_materials_clearcoat's textures (G-buffer pass only: units 6-8 hold the environment and the method's
+        // resources in the forward passes). Mask bits 6-8 = units.
+        const int coatSlots[] = {material.clearcoatTexture, material.clearcoatRoughnessTexture,
+                                 material.clearcoatNormalTexture};
+        static_assert(UNIT_MATERIAL_CLEARCOAT == 6 && UNIT_MATERIAL_CLEARCOAT_NORMAL == 8, "coatSlots[] order = units");
+        for (int unit = UNIT_MATERIAL_CLEARCOAT; unit <= UNIT_MATERIAL_CLEARCOAT_NORMAL; ++unit) {
+            int index = coatSlots[unit - UNIT_MATERIAL_CLEARCOAT];
+            if (index >= 0 && index < int(textures_.size())) {
+                glBindTextureUnit(unit, textures_[index].id());
+                mask |= 1 << unit;
+            }
         }
     }
     glUniform1i(3, mask);

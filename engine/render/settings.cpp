@@ -39,6 +39,11 @@ const std::vector<CommonParam>& commonParams() {
         {{"material.glint_anisotropy", 1.0f, 1.0f, 64.0f, "stretch of the glints along the tangent, every material"},
          true},
         {{"material.glint_color_variation", 0.0f, 0.0f, 1.0f, "per-glint colour variation of every material"}, true},
+        // KHR_materials_clearcoat on every material (0 = no coat; the lighting is then unchanged).
+        {{"material.clearcoat", 0.0f, 0.0f, 1.0f, "clear coat layer intensity of every material (KHR_materials_clearcoat)"},
+         true},
+        {{"material.clearcoat_roughness", 0.0f, 0.0f, 1.0f,
+          "clear coat perceptual roughness of every material (alpha = roughness^2)"}, true},
         {{"env.intensity", 1.0f, 0.0f, 100.0f, "multiplier on the environment's radiance (sky and image-based lighting)"}},
         {{"env.rotation", 0.0f, -360.0f, 360.0f,
           "rotation of the environment map about +y in degrees (the procedural sky's sun follows the light)"}},
@@ -186,6 +191,9 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
         if (settings.isSet("material.glint_anisotropy")) m.glint.anisotropy = settings.common_("material.glint_anisotropy");
         if (settings.isSet("material.glint_color_variation"))
             m.glint.colorVariation = settings.common_("material.glint_color_variation");
+        if (settings.isSet("material.clearcoat")) m.clearcoat = settings.common_("material.clearcoat");
+        if (settings.isSet("material.clearcoat_roughness"))
+            m.clearcoatRoughness = settings.common_("material.clearcoat_roughness");
     }
     float scale = settings.common_("light.intensity");
     for (Light& light : scene.lights) light.intensity *= scale;

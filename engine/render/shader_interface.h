@@ -29,7 +29,7 @@ struct GpuLight {               // std430, binding 1
 struct GpuMaterial {            // std430, binding 2
     glm::vec4 baseColor;
     glm::vec4 alphaMetallicNdfGlinty;
-    glm::vec4 densityCutoff;
+    glm::vec4 densityCutoff;    // x density scale, y alpha cutoff, z clear coat, w clear coat roughness
 };
 
 // Binding points (uniform blocks and storage buffers).

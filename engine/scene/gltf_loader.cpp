@@ -40,7 +40,7 @@ enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
     static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
                                                     "KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                                    "GLIMMER_materials_glint"};
+                                                    "KHR_materials_clearcoat", "GLIMMER_materials_glint"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
@@ -450,6 +450,7 @@ private:
         if (gm.alphaMode == "MASK") m.alphaCutoff = float(gm.alphaCutoff);
         m.blend = gm.alphaMode == "BLEND";   // composited after lighting by the transparent pass
         m.emissive = emission(gm, index);
+        ClearcoatTextures coat = clearcoat(gm, index, m);
 
         // One UV transform per material (the engine applies Material::uvTransform to every texture lookup).
         // The base colour's transform wins; a texture with a different transform or another UV set is dropped.
@@ -461,6 +462,9 @@ private:
             {"metallicRoughness", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions, &m.metallicRoughnessTexture, false, 1, 1},
             {"occlusion", gm.occlusionTexture.index, gm.occlusionTexture.texCoord, &gm.occlusionTexture.extensions, &m.occlusionTexture, false, 1, float(gm.occlusionTexture.strength)},
             {"emissive", gm.emissiveTexture.index, gm.emissiveTexture.texCoord, &gm.emissiveTexture.extensions, &m.emissiveTexture, true, 1, 1},
+            {"clearcoat", coat.factor.index, coat.factor.texCoord, &coat.factor.extensions, &m.clearcoatTexture, false, 1, 1},
+            {"clearcoatRoughness", coat.roughness.index, coat.roughness.texCoord, &coat.roughness.extensions, &m.clearcoatRoughnessTexture, false, 1, 1},
+            {"clearcoatNormal", coat.normal.index, coat.normal.texCoord, &coat.normal.extensions, &m.clearcoatNormalTexture, false, coat.normal.scale, 1},
         };
         bool haveTransform = false;
         for (const Slot& slot : slots) {
@@ -497,6 +501,60 @@ private:
                           [&](int t) { return t >= 0 && size_t(t) < model_.textures.size() ? sceneTexture(t, false) : -2; },
                           [&](const std::string& w) { warnings_.add(w); });
         return m;
+    }
+
+    // A textureInfo / normalTextureInfo read from an extension's JSON (tinygltf parses only the core ones).
+    struct ExtensionTexture {
+        int index = -1;
+        int texCoord = 0;
+        float scale = 1.0f;
+        tinygltf::ExtensionMap extensions;
+    };
+    struct ClearcoatTextures { ExtensionTexture factor, roughness, normal; };
+
+    // KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor (numbers in [0, 1], default 0) into
+    // the material; its three textures are returned for the material's texture slots. A factor outside [0, 1]
+    // or a texture that is not a textureInfo object is an error naming the field.
+    ClearcoatTextures clearcoat(const tinygltf::Material& gm, int index, Material& m) {
+        ClearcoatTextures coat;
+        auto it = gm.extensions.find("KHR_materials_clearcoat");
+        if (it == gm.extensions.end()) return coat;
+        const std::string where = file_ + ": materials[" + std::to_string(index) + "].extensions.KHR_materials_clearcoat.";
+        const tinygltf::Value& ext = it->second;
+        if (!ext.IsObject()) throw Error(where.substr(0, where.size() - 1) + " is not an object");
+        auto factor = [&](const char* key) {
+            if (!ext.Has(key)) return 0.0f;
+            const tinygltf::Value& v = ext.Get(key);
+            double value = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
+            if (!(value >= 0.0 && value <= 1.0)) throw Error(where + key + " is not a number in [0, 1]");
+            return float(value);
+        };
+        m.clearcoat = factor("clearcoatFactor");
+        m.clearcoatRoughness = factor("clearcoatRoughnessFactor");
+        auto texture = [&](const char* key, ExtensionTexture& out) {
+            if (!ext.Has(key)) return;
+            const tinygltf::Value& v = ext.Get(key);
+            const std::string at = where + key;
+            if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt())
+                throw Error(at + " is not a textureInfo object with an integer index");
+            out.index = v.Get("index").GetNumberAsInt();
+            if (out.index < 0 || size_t(out.index) >= model_.textures.size())
+                throw Error(at + ".index " + std::to_string(out.index) + " names no texture");
+            if (v.Has("texCoord") && v.Get("texCoord").IsInt()) out.texCoord = v.Get("texCoord").GetNumberAsInt();
+            if (v.Has("scale")) {
+                const tinygltf::Value& sv = v.Get("scale");
+                if (!sv.IsNumber() && !sv.IsInt()) throw Error(at + ".scale is not a number");
+                out.scale = float(sv.GetNumberAsDouble());
+            }
+            if (v.Has("extensions") && v.Get("extensions").IsObject()) {
+                const tinygltf::Value& e = v.Get("extensions");
+                for (const std::string& name : e.Keys()) out.extensions[name] = e.Get(name);
+            }
+        };
+        texture("clearcoatTexture", coat.factor);
+        texture("clearcoatRoughnessTexture", coat.roughness);
+        texture("clearcoatNormalTexture", coat.normal);
+        return coat;
     }
 
     // Emitted radiance: emissiveFactor (glTF 3.9.2, linear, each in [0, 1]) times KHR_materials_emissive_strength's

@@ -84,6 +84,15 @@ struct Material {
     int normalTexture = -1;
     int occlusionTexture = -1;
     int glintMaskTexture = -1;
+    // KHR_materials_clearcoat: a smooth dielectric layer (F0 0.04) over the whole material, glints included.
+    // clearcoat = clearcoatFactor (x clearcoatTexture.r), clearcoatRoughness = clearcoatRoughnessFactor
+    // (x clearcoatRoughnessTexture.g; perceptual, alpha = roughness^2). 0 = no coat (the material is unchanged).
+    // Without clearcoatNormalTexture the coat follows the geometric normal, not the base's normal map.
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f;
+    int clearcoatTexture = -1;
+    int clearcoatRoughnessTexture = -1;
+    int clearcoatNormalTexture = -1;  // its normalTextureInfo.scale is baked into the texture
     glm::mat3 uvTransform{1.0f};  // KHR_texture_transform, applied to UV0 for every texture of the material
 };
 

@@ -200,7 +200,9 @@ int loadTexture(Scene& scene, const Reader& r, const Json& o, const char* key, c
 void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::string& where, Material& m) {
     r.checkKeys(o, where, {"name", "baseColor", "alpha", "roughness", "metallic", "ndf", "glinty", "glintDensityScale",
                            "alphaCutoff", "doubleSided", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
-                           "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees", "glint"});
+                           "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees", "glint",
+                           "clearcoat", "clearcoatRoughness", "clearcoatTexture", "clearcoatRoughnessTexture",
+                           "clearcoatNormalTexture"});
     if (o.contains("baseColor")) m.baseColor = r.colour(o["baseColor"], where + ".baseColor");
     if (o.contains("alpha") && o.contains("roughness")) r.fail(where, "give either alpha or roughness, not both");
     m.alpha = r.number(o, "alpha", where, m.alpha, 1e-3f, 1.0f);
@@ -231,6 +233,9 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
         m.glint.anisotropy = r.number(g, "anisotropy", gw, m.glint.anisotropy, 1.0f, 64.0f);
         m.glinty = r.boolean(o, "glinty", where, true);
     }
+    // KHR_materials_clearcoat's factors (same names and ranges as clearcoatFactor, clearcoatRoughnessFactor).
+    m.clearcoat = r.number(o, "clearcoat", where, m.clearcoat, 0.0f, 1.0f);
+    m.clearcoatRoughness = r.number(o, "clearcoatRoughness", where, m.clearcoatRoughness, 0.0f, 1.0f);
     m.alphaCutoff = r.number(o, "alphaCutoff", where, m.alphaCutoff, -1.0f, 1.0f);
     m.doubleSided = r.boolean(o, "doubleSided", where, m.doubleSided);
     if (int t = loadTexture(scene, r, o, "baseColorTexture", where, true); t >= 0) m.baseColorTexture = t;
@@ -238,6 +243,9 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
     if (int t = loadTexture(scene, r, o, "normalTexture", where, false); t >= 0) m.normalTexture = t;
     if (int t = loadTexture(scene, r, o, "occlusionTexture", where, false); t >= 0) m.occlusionTexture = t;
     if (int t = loadTexture(scene, r, o, "glintMaskTexture", where, false); t >= 0) m.glintMaskTexture = t;
+    if (int t = loadTexture(scene, r, o, "clearcoatTexture", where, false); t >= 0) m.clearcoatTexture = t;
+    if (int t = loadTexture(scene, r, o, "clearcoatRoughnessTexture", where, false); t >= 0) m.clearcoatRoughnessTexture = t;
+    if (int t = loadTexture(scene, r, o, "clearcoatNormalTexture", where, false); t >= 0) m.clearcoatNormalTexture = t;
     if (o.contains("uvScale") || o.contains("uvOffset") || o.contains("uvRotationDegrees")) {
         // Same convention as KHR_texture_transform: uv' = T * R * S * uv.
         glm::vec2 scale = !o.contains("uvScale") ? glm::vec2(1.0f)

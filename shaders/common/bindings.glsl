@@ -27,6 +27,7 @@
 #define UNIT_GBUFFER_TANGENT_METALLIC 3
 #define UNIT_GBUFFER_BASE_COLOR_MASK 4
 #define UNIT_GBUFFER_DEPTH 5         // reversed-Z depth
+#define UNIT_GBUFFER_CLEARCOAT 30    // G-buffer colour target 5: coat normal (octahedral), coat factor, coat roughness
 #define UNIT_ENV_SPECULAR 6          // samplerCubeArray: prefiltered environment (layer = NDF)
 #define UNIT_ENV_BRDF_LUT 7          // sampler2D: split-sum table
 #define UNIT_METHOD_FIRST 8          // glint methods: 8..15
@@ -46,6 +47,11 @@
 #define UNIT_MATERIAL_OCCLUSION 3
 #define UNIT_MATERIAL_GLINT_MASK 4
 #define UNIT_MATERIAL_EMISSIVE 5        // emissive and transparent passes only (unit 5 is the G-buffer depth elsewhere)
+// KHR_materials_clearcoat, G-buffer pass only: units 6-8 are the environment's and the method's in the passes that
+// follow, and the lighting pass rebinds those each frame (forward passes never bind these three).
+#define UNIT_MATERIAL_CLEARCOAT 6
+#define UNIT_MATERIAL_CLEARCOAT_ROUGHNESS 7
+#define UNIT_MATERIAL_CLEARCOAT_NORMAL 8
 
 // Ambient-occlusion passes (shaders/ao/: gtao.frag, ao_resolve.frag), before lighting.
 #define UNIT_AO_DEPTH 0

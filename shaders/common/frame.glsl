@@ -47,3 +47,4 @@ const int VIEW_ROUGHNESS_METALLIC = 10;
 const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)
 const int VIEW_SHADOW = 12;  // visibility of the first light (shadow maps; 0 where the surface faces away)
 const int VIEW_AO = 13;      // ambient occlusion (shaders/ao/)
+const int VIEW_CLEARCOAT = 14;  // KHR_materials_clearcoat: intensity, roughness, coat weight (common/clearcoat.glsl)

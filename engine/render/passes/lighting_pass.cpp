@@ -47,7 +47,8 @@ void LightingPass::execute(const FrameContext& frame) {
     if (frame.probes) frame.probes->bind(frame.probesActive);
     if (shadows_) frame.shadows->bind();   // per-light visibility (common/shadows.glsl)
     for (int i = 0; i < FrameTargets::kGBufferColorCount; ++i)
-        glBindTextureUnit(GLuint(UNIT_GBUFFER_FIRST + i), frame.targets.gbufferTexture(i));
+        glBindTextureUnit(i == 5 ? GLuint(UNIT_GBUFFER_CLEARCOAT) : GLuint(UNIT_GBUFFER_FIRST + i),
+                          frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
     if (!frame.ambientOcclusion && !unoccluded_) unoccluded_ = gl::createConstantTexture(1.0f, 1.0f, 1.0f, 1.0f);
     glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.ambientOcclusion ? frame.ambientOcclusion : unoccluded_.id());
