@@ -184,5 +184,23 @@ TEST(PanelFit, EveryLabelRendersFromTheFontTableAtThreeWindowSizes) {
     }
 }
 
+// A method parameter that the glint material maps shows "material" until the user overrides it (the materials'
+// values are in effect, not the spec default); an override, or a parameter no material maps, shows its number.
+TEST(PanelFit, MaterialMappedMethodParametersSayMaterialUntilOverridden) {
+    const GlintMethod& deliot = findGlintMethod("deliot2023");
+    RenderSettings settings;
+    settings.method = deliot.id;
+    ASSERT_FALSE(deliot.materialMapping.empty());
+    for (const ParamMapping& m : deliot.materialMapping)
+        EXPECT_STREQ(methodParameterValueText(deliot, settings, m.param), "material") << m.param;
+    EXPECT_EQ(methodParameterValueText(deliot, settings, "screen_space_scale"), nullptr);
+    settings.methods[deliot.id]["log_density"] = 12.0f;
+    EXPECT_EQ(methodParameterValueText(deliot, settings, "log_density"), nullptr);
+    for (const GlintMethod& method : glintMethods())
+        for (const ParamMapping& m : method.materialMapping)
+            EXPECT_STREQ(methodParameterValueText(method, RenderSettings{}, m.param), "material")
+                << method.id << "." << m.param;
+}
+
 }  // namespace
 }  // namespace glimmer::ui

@@ -72,6 +72,15 @@ static bool panelHidesMethodParameter(const GlintMethod& method, const std::stri
     return false;
 }
 
+const char* methodParameterValueText(const GlintMethod& method, const RenderSettings& settings,
+                                     const std::string& name) {
+    auto values = settings.methods.find(method.id);
+    if (values != settings.methods.end() && values->second.count(name)) return nullptr;
+    for (const ParamMapping& m : method.materialMapping)
+        if (m.param == name) return "material";
+    return nullptr;
+}
+
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
     std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
@@ -107,7 +116,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
             for (const ParamSpec& spec : method.params) {
                 if (panelHidesMethodParameter(method, spec.name)) continue;
                 float value = paramOr(settings.methodValues(method.id), spec);
-                Edit edit = ui.slider(spec.name, spec, value);
+                Edit edit = ui.slider(spec.name, spec, value, methodParameterValueText(method, settings, spec.name));
                 if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;
                 if (edit == Edit::Reset) settings.methods[method.id].erase(spec.name);
                 result.settingsChanged |= edit != Edit::None;

@@ -56,6 +56,12 @@ struct PanelLayout {
 constexpr int kMaxStatsLines = 4;
 PanelLayout panelLayout(int width, int height, int statsLines);
 
+// What a method parameter's row shows instead of its number: "material" for a parameter that each glint material
+// maps (deliot2023's log_density, kemppinen2025's alpha*, ...) while no override is set, since the materials'
+// mapped values are then in effect, not the spec's default; nullptr (show the number) otherwise.
+const char* methodParameterValueText(const GlintMethod& method, const RenderSettings& settings,
+                                     const std::string& name);
+
 // The speed slider's range (also used by the wheel).
 ParamSpec moveSpeedSpec();
 
