@@ -3,6 +3,9 @@
 // a glTF BLEND surface (3.9.4) shaded like the lighting pass shades opaque ones (Cook-Torrance with the material's
 // smooth NDF, Lambert, metalness; the prefiltered environment or the constant ambient; every light; emission) and
 // its alpha, which the blend state composites "over" the radiance behind it. No glints on blended surfaces.
+// KHR_materials_clearcoat in both: the coat is on top of the emission ("coated_emission = emission x (1 - c Fc)")
+// and, on blended surfaces, of the whole base, with its own lobe added, as the lighting pass layers opaque ones
+// (common/clearcoat.glsl). The coverage alpha covers the coated surface as a whole.
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/brdf.glsl"
@@ -10,6 +13,8 @@
 #include "common/material_textures.glsl"
 #include "common/ibl.glsl"
 #include "common/light_incidence.glsl"
+#include "common/clearcoat.glsl"
+#include "common/clearcoat_material.glsl"
 
 in vec3 v_normal;
 in vec4 v_tangent;
@@ -17,7 +22,7 @@ in vec2 v_uv;
 in vec4 v_color;
 
 layout(location = 2) uniform int u_materialIndex;
-layout(location = 3) uniform int u_textureMask;     // bits: 0 base colour, 1 metal-rough, 2 normal, 3 occlusion, 5 emissive
+layout(location = 3) uniform int u_textureMask;     // bits: 0 base colour, 1 metal-rough, 2 normal, 3 occlusion, 5 emissive, 6-8 coat
 layout(location = 4) uniform mat3 u_uvTransform;
 layout(location = 5) uniform vec3 u_emissive;       // emissiveFactor x emissiveStrength (linear)
 
@@ -26,6 +31,9 @@ layout(binding = UNIT_MATERIAL_METALLIC_ROUGHNESS) uniform sampler2D t_metallicR
 layout(binding = UNIT_MATERIAL_NORMAL) uniform sampler2D t_normal;
 layout(binding = UNIT_MATERIAL_OCCLUSION) uniform sampler2D t_occlusion;
 layout(binding = UNIT_MATERIAL_EMISSIVE) uniform sampler2D t_emissive;
+layout(binding = UNIT_FORWARD_CLEARCOAT) uniform sampler2D t_clearcoat;
+layout(binding = UNIT_FORWARD_CLEARCOAT_ROUGHNESS) uniform sampler2D t_clearcoatRoughness;
+layout(binding = UNIT_FORWARD_CLEARCOAT_NORMAL) uniform sampler2D t_clearcoatNormal;
 
 layout(location = 0) out vec4 o_color;
 
@@ -46,7 +54,23 @@ void main() {
 
 #ifdef FORWARD_EMISSIVE
     if (material.densityCutoff.y >= 0.0 && baseColor.a < material.densityCutoff.y) discard;   // MASK: as the G-buffer
-    o_color = vec4(finiteOrZero(emission), 0.0);
+#endif
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;
+    vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+    t = dot(t, t) > 1e-12 ? normalize(t) : normalize(cross(abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), n));
+    float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
+    // Position from the fragment's window depth (clip control zero-to-one: NDC z = depth).
+    vec2 ndc = gl_FragCoord.xy / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 p = u_inverseViewProjection * vec4(ndc, gl_FragCoord.z, 1.0);
+    vec3 position = p.xyz / p.w;
+    vec3 toEye = normalize(u_cameraPosition.xyz - position);
+    ClearcoatMaterial coatMaterial = clearcoatMaterial(material, u_textureMask, t_clearcoat, t_clearcoatRoughness,
+                                                       t_clearcoatNormal, textureUv, footprint, n, t, bitangentSign);
+    Clearcoat coat = clearcoatAt(coatMaterial.n, coatMaterial.intensity, coatMaterial.roughness, toEye);
+
+#ifdef FORWARD_EMISSIVE
+    o_color = vec4(finiteOrZero(emission * (1.0 - coat.weight)), 0.0);
 #else
     float alpha = material.alphaMetallicNdfGlinty.x;
     float metallic = material.alphaMetallicNdfGlinty.y;
@@ -59,11 +83,6 @@ void main() {
     alpha = max(alpha, 1e-4);
     float occlusion = (u_textureMask & 8) != 0 ? sampleTexture(t_occlusion, textureUv, footprint).r : 1.0;
 
-    vec3 n = normalize(v_normal);
-    if (!gl_FrontFacing) n = -n;
-    vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
-    t = dot(t, t) > 1e-12 ? normalize(t) : normalize(cross(abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), n));
-    float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
     if ((u_textureMask & 4) != 0) {
         vec3 tn = sampleTexture(t_normal, textureUv, footprint).xyz * 2.0 - 1.0;
         vec3 b = bitangentSign * cross(n, t);
@@ -72,12 +91,6 @@ void main() {
     }
     vec3 b = bitangentSign * cross(n, t);
     mat3 worldToShading = transpose(mat3(t, b, n));
-
-    // Position from the fragment's window depth (clip control zero-to-one: NDC z = depth).
-    vec2 ndc = gl_FragCoord.xy / vec2(u_viewport.xy) * 2.0 - 1.0;
-    vec4 p = u_inverseViewProjection * vec4(ndc, gl_FragCoord.z, 1.0);
-    vec3 position = p.xyz / p.w;
-    vec3 toEye = normalize(u_cameraPosition.xyz - position);
     vec3 wo = worldToShading * toEye;
     vec3 albedo = baseColor.rgb * occlusion;   // as the G-buffer: occlusion darkens the base colour
     vec3 f0 = mix(vec3(0.04), albedo, metallic);
@@ -85,17 +98,32 @@ void main() {
 
     vec3 radiance = envEnabled() ? envLighting(n, toEye, diffuseAlbedo, f0, alpha, ndf)
                                  : u_skyColor.rgb * u_exposure.z * diffuseAlbedo;
+    bool coated = coat.weight > 0.0;
+    vec3 coatRadiance = vec3(0.0);
+    if (coated) {
+        // The coat's environment lobe as the lighting pass computes it (split sum at the coat's roughness, GGX
+        // table with F0 = 1; the constant ambient without an environment), from the distant map like the base.
+        vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
+        if (envEnabled()) {
+            vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
+            coatEnvironment = envPrefiltered(reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
+        }
+        coatRadiance += coat.weight * coatEnvironment;
+    }
     int lightCount = int(u_exposure.y);
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
+        bool coatLit = coated && dot(coat.n, towardLight) > 0.0 && coat.nDotV > 0.0;
+        if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
         vec3 specular = cookTorranceSpecular(D_smooth(h, alpha, ndf), wi, wo, h, alpha, ndf, f0);
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
     radiance += emission;
+    if (coated) radiance = radiance * (1.0 - coat.weight) + coatRadiance;
     float coverage = clamp(baseColor.a, 0.0, 1.0);
     o_color = vec4(finiteOrZero(radiance), isnan(coverage) ? 0.0 : coverage);
 #endif

@@ -11,6 +11,7 @@
 #include "common/footprint.glsl"
 #include "common/material_textures.glsl"
 #include "common/octahedral.glsl"
+#include "common/clearcoat_material.glsl"
 
 in vec3 v_normal;
 in vec4 v_tangent;
@@ -64,17 +65,8 @@ void main() {
     vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
     t = dot(t, t) > 1e-12 ? normalize(t) : normalize(cross(abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), n));
     float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
-    // KHR_materials_clearcoat: without its own normal texture the coat follows the geometric normal, not the
-    // base's normal map (a smooth varnish over a bumpy paint).
-    float clearcoat = material.densityCutoff.z;
-    float clearcoatRoughness = material.densityCutoff.w;
-    if ((u_textureMask & 64) != 0) clearcoat *= sampleTexture(t_clearcoat, textureUv, footprint).r;
-    if ((u_textureMask & 128) != 0) clearcoatRoughness *= sampleTexture(t_clearcoatRoughness, textureUv, footprint).g;
-    vec3 coatNormal = n;
-    if ((u_textureMask & 256) != 0) {
-        vec3 tn = sampleTexture(t_clearcoatNormal, textureUv, footprint).xyz * 2.0 - 1.0;
-        coatNormal = normalize(tn.x * t + tn.y * (bitangentSign * cross(n, t)) + tn.z * n);
-    }
+    ClearcoatMaterial coat = clearcoatMaterial(material, u_textureMask, t_clearcoat, t_clearcoatRoughness,
+                                               t_clearcoatNormal, textureUv, footprint, n, t, bitangentSign);
     if ((u_textureMask & 4) != 0) {
         vec3 tn = sampleTexture(t_normal, textureUv, footprint).xyz * 2.0 - 1.0;
         vec3 b = bitangentSign * cross(n, t);
@@ -87,5 +79,5 @@ void main() {
     o_normalAlpha = vec4(n, max(alpha, 1e-4));
     o_tangentMetallic = vec4(t, metallic);
     o_baseColorMask = vec4(baseColor.rgb, glintMask);
-    o_clearcoat = clearcoat > 0.0 ? vec4(octahedralEncode(coatNormal), clearcoat, clearcoatRoughness) : vec4(0.0);
+    o_clearcoat = coat.intensity > 0.0 ? vec4(octahedralEncode(coat.n), coat.intensity, coat.roughness) : vec4(0.0);
 }

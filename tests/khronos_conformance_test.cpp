@@ -18,6 +18,7 @@
 #include "core/image_io.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
+#include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 #include "support/process.h"
@@ -324,6 +325,80 @@ TEST(KhronosConformance, BlendedGlassMatchesTheCompositingFormula) {
     // lighting pass's formulas (same lights, same prefiltered environment) in its own float arithmetic.
     EXPECT_LT(worst, 5e-3) << "composite differs from a2 S2 + (1 - a2)(a1 S1 + (1 - a1) B)";
     std::printf("blend: %d pixels behind two layers, %d behind one, worst relative error %.2e\n", both, one, worst);
+}
+
+// KHR_materials_clearcoat "Emission": the coat lies on top of the emission, coated_emission = emission x
+// (1 - c Fc), Fc the coat's Schlick Fresnel (F0 0.04) at n.v. A coated (c = 1) quad with and without emission:
+// the difference is E (1 - Fc(n.v)) pixel by pixel, n = +z, v from the camera ray.
+TEST(KhronosConformance, EmissionUnderAClearCoatIsDimmedByTheCoatFresnel) {
+    fs::path dir = glimmer::test::makeTempDir("khronos_coated_emission");
+    const std::string coat = R"("extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1.0,"clearcoatRoughnessFactor":0.5}})";
+    const std::string base = R"("pbrMetallicRoughness":{"baseColorFactor":[0.3,0.3,0.3,1],"metallicFactor":0,"roughnessFactor":0.7})";
+    const std::string used = R"("extensionsUsed":["KHR_materials_clearcoat"],)";
+    glimmer::Camera camera = cameraOnZ(3.0f);
+    RenderResult off = renderFinal(writeQuads(dir, "off", {{0.0f, 1.0f, "{" + base + "," + coat + "}"}}, used), camera);
+    RenderResult on = renderFinal(writeQuads(dir, "on", {{0.0f, 1.0f, "{" + base + R"(,"emissiveFactor":[0.2,0.5,0.8],)" + coat + "}"}}, used), camera);
+    const glm::dvec3 emission(0.2, 0.5, 0.8);
+    int covered = 0;
+    double worst = 0.0, largestDimming = 0.0;
+    for (int y = 0; y < off.height; ++y)
+        for (int x = 0; x < off.width; ++x) {
+            if (at(off, x, y).w <= 0.0f) continue;
+            ++covered;
+            glimmer::Ray ray = glimmer::cameraRay(camera, off.width, off.height, x + 0.5, y + 0.5);
+            double nDotV = -ray.direction.z;
+            double fresnel = 0.04 + 0.96 * std::pow(1.0 - nDotV, 5.0);
+            largestDimming = std::max(largestDimming, fresnel);
+            for (int c = 0; c < 3; ++c) {
+                double expected = emission[c] * (1.0 - fresnel);
+                worst = std::max(worst, std::abs(double(at(on, x, y)[c] - at(off, x, y)[c]) - expected));
+            }
+        }
+    EXPECT_GT(covered, 200);
+    EXPECT_GT(largestDimming * emission.z, 10 * 2e-3);   // the coat dims the blue channel 16x the tolerance or more
+    EXPECT_LT(worst, 2e-3) << "coated emission differs from E (1 - c Fc)";
+    std::printf("coated emission: %d pixels, worst |L_on - L_off - E (1 - Fc)| = %.2e\n", covered, worst);
+}
+
+// A coated alpha-BLEND surface (forward pass) is the coated opaque surface (lighting pass, against the CPU
+// two-lobe BRDF in Clearcoat.*) composited over the backdrop: C = a S_coated + (1 - a) B. Coat values 0.5 are
+// exact in the G-buffer's half floats, so both passes shade the same coat.
+TEST(KhronosConformance, ClearCoatedGlassIsTheCoatedSurfaceComposited) {
+    fs::path dir = glimmer::test::makeTempDir("khronos_coated_blend");
+    const std::string backdrop = R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.8,0.2,1],"metallicFactor":0,"roughnessFactor":0.9}})";
+    auto glass = [](float a, bool blend, bool coated) {
+        return std::string(R"({"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.4,1.0,)") + std::to_string(a) +
+               R"(],"metallicFactor":0,"roughnessFactor":0.5},"doubleSided":true)" +
+               (coated ? R"(,"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1.0,"clearcoatRoughnessFactor":0.5}})" : "") +
+               (blend ? R"(,"alphaMode":"BLEND"})" : "}");
+    };
+    const std::string used = R"("extensionsUsed":["KHR_materials_clearcoat"],)";
+    const float a = 0.6f;
+    glimmer::Camera camera = cameraOnZ(4.0f);
+    RenderResult composite = renderFinal(writeQuads(dir, "composite", {{0.4f, 0.8f, glass(a, true, true)},
+                                                                       {0.0f, 1.2f, backdrop}}, used), camera);
+    RenderResult b = renderFinal(writeQuads(dir, "backdrop", {{0.0f, 1.2f, backdrop}}), camera);
+    RenderResult s = renderFinal(writeQuads(dir, "coated", {{0.4f, 0.8f, glass(1.0f, false, true)}}, used), camera);
+    RenderResult bare = renderFinal(writeQuads(dir, "bare", {{0.4f, 0.8f, glass(1.0f, false, false)}}), camera);
+    int covered = 0;
+    double worst = 0.0, coatEffect = 0.0;
+    for (int y = 0; y < b.height; ++y)
+        for (int x = 0; x < b.width; ++x) {
+            if (at(b, x, y).w <= 0.0f || at(s, x, y).w <= 0.0f) continue;
+            ++covered;
+            glm::vec3 expected = a * glm::vec3(at(s, x, y)) + (1.0f - a) * glm::vec3(at(b, x, y));
+            glm::vec3 got = glm::vec3(at(composite, x, y));
+            for (int c = 0; c < 3; ++c) {
+                worst = std::max(worst, double(std::abs(got[c] - expected[c]) / std::max(expected[c], 1e-2f)));
+                coatEffect = std::max(coatEffect, double(std::abs(at(s, x, y)[c] - at(bare, x, y)[c]) /
+                                                         std::max(at(bare, x, y)[c], 1e-2f)));
+            }
+        }
+    EXPECT_GT(covered, 200);
+    EXPECT_GT(coatEffect, 0.05);   // the coat changes the surface far more than the tolerance
+    EXPECT_LT(worst, 5e-3) << "coated glass differs from a S_coated + (1 - a) B";
+    std::printf("coated blend: %d pixels, worst relative error %.2e, coat effect up to %.1f%%\n", covered, worst,
+                100.0 * coatEffect);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -160,17 +160,19 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
             mask |= 1 << unit;
         }
     }
-    if (!forward && normalMatrix) {
-        // KHR_materials_clearcoat's textures (G-buffer pass only: units 6-8 hold the environment and the method's
-        // resources in the forward passes). Mask bits 6-8 = units.
+    if (normalMatrix) {
+        // KHR_materials_clearcoat's textures: units 6-8 in the G-buffer pass, 12-14 in the forward passes (6-7
+        // hold the environment there). Mask bits 6-8 in both.
         const int coatSlots[] = {material.clearcoatTexture, material.clearcoatRoughnessTexture,
                                  material.clearcoatNormalTexture};
-        static_assert(UNIT_MATERIAL_CLEARCOAT == 6 && UNIT_MATERIAL_CLEARCOAT_NORMAL == 8, "coatSlots[] order = units");
-        for (int unit = UNIT_MATERIAL_CLEARCOAT; unit <= UNIT_MATERIAL_CLEARCOAT_NORMAL; ++unit) {
-            int index = coatSlots[unit - UNIT_MATERIAL_CLEARCOAT];
+        static_assert(UNIT_MATERIAL_CLEARCOAT_NORMAL - UNIT_MATERIAL_CLEARCOAT == 2 &&
+                      UNIT_FORWARD_CLEARCOAT_NORMAL - UNIT_FORWARD_CLEARCOAT == 2, "coatSlots[] order = units");
+        const int firstUnit = forward ? UNIT_FORWARD_CLEARCOAT : UNIT_MATERIAL_CLEARCOAT;
+        for (int k = 0; k < 3; ++k) {
+            int index = coatSlots[k];
             if (index >= 0 && index < int(textures_.size())) {
-                glBindTextureUnit(unit, textures_[index].id());
-                mask |= 1 << unit;
+                glBindTextureUnit(GLuint(firstUnit + k), textures_[index].id());
+                mask |= 1 << (UNIT_MATERIAL_CLEARCOAT + k);
             }
         }
     }

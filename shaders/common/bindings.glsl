@@ -52,6 +52,11 @@
 #define UNIT_MATERIAL_CLEARCOAT 6
 #define UNIT_MATERIAL_CLEARCOAT_ROUGHNESS 7
 #define UNIT_MATERIAL_CLEARCOAT_NORMAL 8
+// The same three textures in the forward passes (emissive, transparent), on method units: no forward shader reads a
+// method's resources, and the lighting pass rebinds those every frame.
+#define UNIT_FORWARD_CLEARCOAT 12
+#define UNIT_FORWARD_CLEARCOAT_ROUGHNESS 13
+#define UNIT_FORWARD_CLEARCOAT_NORMAL 14
 
 // Ambient-occlusion passes (shaders/ao/: gtao.frag, ao_resolve.frag), before lighting.
 #define UNIT_AO_DEPTH 0

@@ -21,15 +21,20 @@ struct Clearcoat {
     float nDotV;
 };
 
-// From G-buffer target 5 (gbuffer.frag): octahedral coat normal, intensity, perceptual roughness.
-Clearcoat clearcoatFromGBuffer(vec4 texel, vec3 toEye) {
+// The coat at a point seen along toEye: world coat normal n, intensity and perceptual roughness.
+Clearcoat clearcoatAt(vec3 n, float intensity, float roughness, vec3 toEye) {
     Clearcoat c;
-    c.n = octahedralDecode(texel.xy);
+    c.n = n;
     c.nDotV = dot(c.n, toEye);
     float fresnel = F_Schlick(vec3(kClearcoatF0), abs(c.nDotV)).x;
-    c.weight = texel.z > 0.0 ? clamp(texel.z, 0.0, 1.0) * fresnel : 0.0;
-    c.alpha = max(texel.w * texel.w, kClearcoatMinAlpha);
+    c.weight = intensity > 0.0 ? clamp(intensity, 0.0, 1.0) * fresnel : 0.0;
+    c.alpha = max(roughness * roughness, kClearcoatMinAlpha);
     return c;
+}
+
+// From G-buffer target 5 (gbuffer.frag): octahedral coat normal, intensity, perceptual roughness.
+Clearcoat clearcoatFromGBuffer(vec4 texel, vec3 toEye) {
+    return clearcoatAt(octahedralDecode(texel.xy), texel.z, texel.w, toEye);
 }
 
 // The coat lobe (without Fresnel) times n_c.l for unit world vectors l (to the light) and v (to the eye).
