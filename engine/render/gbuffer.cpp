@@ -38,10 +38,19 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
         depth_.id());
     hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
     hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()});
-    display_ = gl::createTexture2D(GL_RGBA8, width, height);
-    displayFbo_ = gl::createFramebuffer("display", {display_.id()});
+    postWidth_ = postHeight_ = 0;
+    resizePost(width, height);   // the renderer asks for another post size when TAA upsamples
     if (glintPost) allocateGlintPost();
     if (glintPart) allocateGlintPart();
+}
+
+void FrameTargets::resizePost(int width, int height) {
+    if (width == postWidth_ && height == postHeight_) return;
+    postWidth_ = width;
+    postHeight_ = height;
+    postHdr_ = width == width_ && height == height_ ? gl::Texture{} : gl::createTexture2D(GL_RGBA32F, width, height);
+    display_ = gl::createTexture2D(GL_RGBA8, width, height);
+    displayFbo_ = gl::createFramebuffer("display", {display_.id()});
 }
 
 void FrameTargets::allocateGlintPost() {
