@@ -42,17 +42,23 @@ layout(location = 1) out vec4 o_historyGlint;
 layout(location = 2) out vec4 o_resolved;
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
     ivec2 outputSize = textureSize(t_historyBase, 0);
     ivec2 inputSize = textureSize(t_current, 0);
     vec2 outputFromInput = vec2(outputSize) / vec2(inputSize);   // the upscale ratio per axis
     vec2 position = gl_FragCoord.xy / outputFromInput;            // this pixel's centre in internal pixels
     ivec2 nearest = clamp(ivec2(floor(position + u_jitter)), ivec2(0), inputSize - 1);
-    float fillWidth = max(u_kernelWidth, max(outputFromInput.x, outputFromInput.y));
+
+    // Where this pixel's surface point was in the previous frame (depth of the nearest sample): decides the kernel.
+    vec2 ndc = gl_FragCoord.xy / vec2(outputSize) * 2.0 - 1.0;
+    vec4 previousClip = u_reprojection * vec4(ndc, texelFetch(t_depth, nearest, 0).r, 1.0);
+    vec2 previousUv = previousClip.w > 0.0 ? previousClip.xy / previousClip.w * 0.5 + 0.5 : vec2(-1.0);
+    bool valid = u_reset == 0 && all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThanEqual(previousUv, vec2(1.0)));
+    float width = valid ? u_kernelWidth : max(u_kernelWidth, max(outputFromInput.x, outputFromInput.y));
+    float falloff = -2.29 / (width * width);
 
     vec3 moment1 = vec3(0.0), moment2 = vec3(0.0), glintMax = vec3(0.0);
-    vec3 sumBase = vec3(0.0), sumGlint = vec3(0.0), fillBase = vec3(0.0), fillGlint = vec3(0.0);
-    float weight = 0.0, fillWeight = 0.0;
+    vec3 sumBase = vec3(0.0), sumGlint = vec3(0.0);
+    float weight = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = clamp(nearest + ivec2(dx, dy), ivec2(0), inputSize - 1);
@@ -63,15 +69,10 @@ void main() {
             moment2 += baseYCoCg * baseYCoCg;
             glintMax = max(glintMax, glint);
             vec2 offset = (vec2(q) + 0.5 - u_jitter - position) * outputFromInput;   // output pixels
-            float d2 = dot(offset, offset);
-            float w = exp(-2.29 * d2 / (u_kernelWidth * u_kernelWidth));
-            float wFill = exp(-2.29 * d2 / (fillWidth * fillWidth));
+            float w = exp(falloff * dot(offset, offset));
             sumBase += w * base;
             sumGlint += w * glint;
             weight += w;
-            fillBase += wFill * base;
-            fillGlint += wFill * glint;
-            fillWeight += wFill;
         }
     vec3 mean = moment1 / 9.0;
     vec3 sigma = sqrt(max(moment2 / 9.0 - mean * mean, vec3(0.0)));
@@ -79,14 +80,8 @@ void main() {
     // The nearest sample's weight is at least exp(-2.29 * 0.5 * ratio^2 / width^2) > 0: no division by zero.
     vec3 currentBase = sumBase / max(weight, 1e-30), currentGlint = sumGlint / max(weight, 1e-30);
 
-    // Where this pixel's surface point was in the previous frame (depth of the nearest sample).
-    vec2 ndc = gl_FragCoord.xy / vec2(outputSize) * 2.0 - 1.0;
-    vec4 previousClip = u_reprojection * vec4(ndc, texelFetch(t_depth, nearest, 0).r, 1.0);
-    vec2 previousUv = previousClip.w > 0.0 ? previousClip.xy / previousClip.w * 0.5 + 0.5 : vec2(-1.0);
-    bool valid = u_reset == 0 && all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThanEqual(previousUv, vec2(1.0)));
-
-    float frames = 0.0, maxFrames = 1.0 / u_feedback;
-    vec3 base = fillBase / fillWeight, glint = fillGlint / fillWeight;
+    float frames = confidence, maxFrames = 1.0 / u_feedback;
+    vec3 base = currentBase, glint = currentGlint;
     if (valid) {
         frames = texelFetch(t_historyBase, clamp(ivec2(previousUv * vec2(outputSize)), ivec2(0), outputSize - 1), 0).a;
         float blend = confidence / max(min(frames + confidence, maxFrames), 1e-6);
@@ -96,8 +91,6 @@ void main() {
         base = mix(historyBase, currentBase, blend);
         glint = mix(historyGlint, currentGlint, max(blend, u_glintFeedback * confidence));
         frames = min(frames + confidence, maxFrames);
-    } else {
-        frames = confidence;
     }
     base = finiteOrZero(max(base, vec3(0.0)));
     glint = finiteOrZero(max(glint, vec3(0.0)));
