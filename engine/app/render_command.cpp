@@ -83,6 +83,8 @@ int runRenderCommand(const std::vector<std::string>& argList) {
         request.renderScale = std::strtof(scale->c_str(), &end);
         if (scale->empty() || *end != '\0' || !(request.renderScale >= 0.25f && request.renderScale <= 1.0f))
             throw UsageError("--render-scale: '" + *scale + "' is not a number in [0.25, 1]");
+        if (request.settings.debugView != 0 && request.renderScale < 1.0f)
+            throw UsageError("--render-scale: not with --aov (AOVs are not resampled; render them at the size wanted)");
     }
     auto out = args.value("--out");
     std::optional<std::string> compare = args.value("--compare");
