@@ -6,7 +6,8 @@
 //       luminance, TAAU within 15% of the upscaled no-AA render at the same render scale (the glint footprints are
 //       those of the internal pixel in both: a native-resolution render has other glints by construction);
 //   (c) no NaN / Inf in any image;
-//   (d) a render-scale change mid-sequence keeps the history (no reset) and the image (mean luminance).
+//   (d) a render-scale change mid-sequence keeps the history (no reset) and the image (mean luminance);
+//   (e) the window at render_scale 0.5 with aa=taa shows the TAAU image (not the Catmull-Rom upscale).
 // With GLIMMER_IMAGE_MEASURE=1 the edge test also prints the table of docs/image.md (render_scale 0.5 and 0.25,
 // no-AA + upscale, TAA at the internal size + upscale, TAAU) and the pass costs at 640x360.
 #include <gtest/gtest.h>
@@ -17,10 +18,12 @@
 
 #include "core/clock.h"
 #include "core/files.h"
+#include "core/image_io.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
 #include "render/upscale.h"
 #include "scene/scene_loader.h"
+#include "support/process.h"
 
 namespace glimmer {
 namespace {
@@ -318,6 +321,43 @@ TEST(ImageTaau, KeepsTheGlintsOfPlane25) {
     ASSERT_GT(a.brightFraction, 0.0);
     EXPECT_NEAR(b.brightFraction / a.brightFraction, 1.0, 0.15);
     EXPECT_NEAR(b.p999OverMean / a.p999OverMean, 1.0, 0.15);
+}
+
+
+// (e) The window's path (renderer -> display at the window size -> present -> screenshot) shows exactly what the
+// offscreen TAAU render of the same frames gives, and that differs from the spatial upscale of the no-AA render
+// (so the comparison can fail). plane25 at 128x128 (the window's camera equals the scene camera there).
+TEST(Window, TaaAtHalfScaleShowsTheTaauImage) {
+    if (test::runUnderXvfb("command -v xvfb-run > /dev/null") != 0) GTEST_SKIP() << "xvfb-run not installed";
+    std::string dir = test::makeTempDir("taau-window");
+    const std::string shot = dir + "/view.png", taau = dir + "/taau.png", spatial = dir + "/spatial.png";
+    ASSERT_EQ(test::runUnderXvfb(std::string(GLIMMER_EXECUTABLE " view --scene plane25 --env none --size 128x128"
+                                             " --render-scale 0.5 --target-fps 0 --set aa=taa --hide-ui --frames 8"
+                                             " --screenshot ") + shot + " > /dev/null 2>&1"),
+              0);
+    const std::vector<std::string> base = {"render", "--scene", "plane25", "--env", "none", "--size", "128x128",
+                                           "--render-scale", "0.5", "--frames", "8"};
+    std::vector<std::string> args = base;
+    args.insert(args.end(), {"--set", "aa=taa", "--out", taau});
+    ASSERT_EQ(test::runGlimmer(args).exitCode, 0);
+    args = base;
+    args.insert(args.end(), {"--out", spatial});
+    ASSERT_EQ(test::runGlimmer(args).exitCode, 0);
+    ImageF window = readImage(shot), offscreen = readImage(taau), upscaled = readImage(spatial);
+    ASSERT_EQ(window.width, 128);
+    ASSERT_EQ(offscreen.width, 128);
+    auto meanDifference = [](const ImageF& a, const ImageF& b) {
+        double sum = 0.0;
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x)
+                for (int c = 0; c < 3; ++c) sum += std::abs(a.at(x, y, c) - b.at(x, y, c));
+        return sum / double(a.width * a.height * 3);
+    };
+    double toTaau = meanDifference(window, offscreen), toSpatial = meanDifference(window, upscaled);
+    std::printf("  window vs offscreen TAAU %.5f, vs no AA + Catmull-Rom %.5f (mean abs, display values)\n", toTaau,
+                toSpatial);
+    EXPECT_LT(toTaau, 0.5 / 255.0);
+    EXPECT_GT(toSpatial, 10.0 * std::max(toTaau, 1e-4));
 }
 
 }  // namespace
