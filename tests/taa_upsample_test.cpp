@@ -20,6 +20,7 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "render/aov.h"
+#include "render/image/halton_jitter.h"
 #include "render/offscreen.h"
 #include "render/upscale.h"
 #include "scene/scene_loader.h"
@@ -358,6 +359,31 @@ TEST(Window, TaaAtHalfScaleShowsTheTaauImage) {
                 toSpatial);
     EXPECT_LT(toTaau, 0.5 / 255.0);
     EXPECT_GT(toSpatial, 10.0 * std::max(toTaau, 1e-4));
+}
+
+
+// The jitter cycle grows with the upscale ratio (max(16, ceil(8 r^2))) and repeats after that many phases; every
+// phase is inside the internal pixel, and over one cycle at r = 2 each quarter of the pixel (each output pixel it
+// covers) receives 8 +- 1 samples (Halton (2, 3) is stratified exactly in x, within one point in y here).
+TEST(ImageTaau, JitterCycleCoversTheUpscaleRatio) {
+    EXPECT_EQ(image::jitterPhases(1.0f), 16);
+    EXPECT_EQ(image::jitterPhases(1.25f), 16);
+    EXPECT_EQ(image::jitterPhases(2.0f), 32);
+    EXPECT_EQ(image::jitterPhases(1.0f / 0.35f), 66);
+    EXPECT_EQ(image::jitterPhases(4.0f), 128);
+    EXPECT_EQ(image::haltonJitter(0, 32), glm::vec2(0.0f)) << "the first frame after a reset is unjittered";
+    int quarters[2][2] = {{0, 0}, {0, 0}};
+    for (unsigned frame = 1; frame <= 32; ++frame) {
+        glm::vec2 j = image::haltonJitter(frame, 32);
+        EXPECT_EQ(j, image::haltonJitter(frame + 32, 32));
+        ASSERT_GE(j.x, -0.5f);
+        ASSERT_LT(j.x, 0.5f);
+        ASSERT_GE(j.y, -0.5f);
+        ASSERT_LT(j.y, 0.5f);
+        ++quarters[j.x >= 0.0f][j.y >= 0.0f];
+    }
+    for (auto& row : quarters)
+        for (int count : row) EXPECT_NEAR(count, 8, 1);
 }
 
 }  // namespace
