@@ -68,6 +68,8 @@ TEST(BadInput, EachGivesAOneLineErrorAndANonZeroExit) {
         {"--set not a number", {"render", "--set", "exposure=bright", "--out", out}, "exposure"},
         {"bad --size (zero)", {"render", "--size", "0x256", "--out", out}, "--size"},
         {"bad --size (text)", {"render", "--size", "huge", "--out", out}, "--size"},
+        {"--render-scale out of range", {"render", "--render-scale", "2", "--out", out}, "--render-scale"},
+        {"--render-scale with --aov", {"render", "--render-scale", "0.5", "--aov", "depth", "--out", out}, "--aov"},
         {"bad --size (too large)", {"render", "--size", "100000x100000", "--out", out}, "--size"},
         {"unwritable --out directory", {"render", "--out", dir + "/missing-dir/out.png"}, "--out"},
         {"unwritable --out file", {"render", "--out", "/proc/glimmer.png"}, "--out"},

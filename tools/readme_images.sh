@@ -2,7 +2,7 @@
 # README's hero image, comparison grids and TAA crop grid, rendered through the image pipeline (docs/image.md):
 # 16 jittered frames of a still camera resolved by TAA, bloom 0.04; the hero is also auto-exposed, the comparison
 # grids keep manual exposure 0 so that every method's tile has the same exposure.
-# Usage: tools/readme_images.sh [build/glimmer] [all|hero|grids|crops]   (run from the repository root)
+# Usage: tools/readme_images.sh [build/glimmer] [all|hero|grids|crops|taau]   (run from the repository root)
 set -eu
 glimmer=${1:-build/glimmer}
 what=${2:-all}
@@ -42,4 +42,24 @@ if [ "$what" = all ] || [ "$what" = crops ]; then
     done
     oiiotool "$work/off-edges.png" "$work/taa-edges.png" "$work/off-glints.png" "$work/taa-glints.png" \
         --mosaic:pad=4 2x2 -o screenshots/image_taa_crops.png
+fi
+if [ "$what" = all ] || [ "$what" = taau ]; then
+    # TAA upsampling at render_scale 0.5 (docs/image.md): no AA + the Catmull-Rom upscale (left), TAAU after 32
+    # frames (middle), the 4x4 supersampled reference at the output size (right); 160x120 crops of 640x360
+    # (columns and snow), enlarged 2x (nearest neighbour).
+    command -v oiiotool > /dev/null || { echo "readme_images.sh: needs oiiotool (apt-get install openimageio-tools)" >&2; exit 1; }
+    work=$(mktemp -d)
+    trap 'rm -rf "$work"' EXIT
+    view="--scene atrium --camera court --method deliot2023 --size 640x360"
+    # shellcheck disable=SC2086
+    "$glimmer" render $view --render-scale 0.5 --out "$work/off.png" > /dev/null
+    # shellcheck disable=SC2086
+    "$glimmer" render $view --render-scale 0.5 --frames 32 --set aa=taa --out "$work/taau.png" > /dev/null
+    # shellcheck disable=SC2086
+    "$glimmer" render $view --set aa=ssaa --out "$work/ssaa.png" > /dev/null
+    for name in off taau ssaa; do
+        oiiotool "$work/$name.png" --cut 160x120+60+120 --resize:filter=box 320x240 -o "$work/$name-crop.png"
+    done
+    oiiotool "$work/off-crop.png" "$work/taau-crop.png" "$work/ssaa-crop.png" --mosaic:pad=4 3x1 \
+        -o screenshots/image_taau_crops.png
 fi

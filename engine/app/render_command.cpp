@@ -23,7 +23,8 @@ namespace glimmer {
 static const char* kRenderHelp =
     "usage: glimmer render --scene NAME|PATH [--camera NAME] [--size WxH] [--backend egl|osmesa]\n"
     "                      [--method NAME] [--set KEY=VALUE ...] [--env PATH|none|procedural|constant:R,G,B]\n"
-    "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--shader-dir DIR] [--stats]\n"
+    "                      [--ibl MODE] [--spp N] [--aov NAME] [--frames N] [--render-scale F] [--shader-dir DIR]\n"
+    "                      [--stats]\n"
     "                      [--allow-outside-uris] [--method-file PATH.glsl ...] --out FILE.png|FILE.exr\n"
     "       glimmer render --compare m1,m2,... [--crop x,y,w,h ...] [scene/size/--set options] --out FILE.png\n"
     "       glimmer render --path CAMERA_PATH.json [--frames N] [--fps F] [scene/size/method options]\n"
@@ -34,6 +35,8 @@ static const char* kRenderHelp =
     "  file:PATH.glsl loads one too (--compare deliot2023,file:my_glints.glsl).\n"
     "  --path renders the camera path recorded in the window (R) at a fixed time step of 1/F s (default 30 fps;\n"
     "  default N: the whole path); --video encodes the frames with the ffmpeg program.\n"
+    "  --render-scale F (0.25 .. 1) renders at F x the size and outputs the size: with --set aa=taa TAA resolves to\n"
+    "  it (TAA upsampling, docs/image.md), otherwise a Catmull-Rom upscale (the window's).\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
     "  --env: environment map (default: the scene's, else the procedural sky). --ibl: how it is integrated\n"
     "  (default prefiltered; Monte Carlo modes average --spp estimates; see --list-params).\n"
@@ -75,6 +78,14 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     }
     bool printStats = args.flag("--stats");
     request.frames = args.intValue("--frames", 1, 1, 100000);
+    if (auto scale = args.value("--render-scale")) {
+        char* end = nullptr;
+        request.renderScale = std::strtof(scale->c_str(), &end);
+        if (scale->empty() || *end != '\0' || !(request.renderScale >= 0.25f && request.renderScale <= 1.0f))
+            throw UsageError("--render-scale: '" + *scale + "' is not a number in [0.25, 1]");
+        if (request.settings.debugView != 0 && request.renderScale < 1.0f)
+            throw UsageError("--render-scale: not with --aov (AOVs are not resampled; render them at the size wanted)");
+    }
     auto out = args.value("--out");
     std::optional<std::string> compare = args.value("--compare");
     std::vector<bench::CropRect> crops;

@@ -934,6 +934,7 @@ private:
         int renderW = width, renderH = height;
         resolution_->internalSize(width, height, renderW, renderH);
         updateAccumulation(renderW, renderH);
+        renderer_->setOutputSize(width, height);   // aa=taa below scale 1 resolves to the window (TAAU)
         renderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
         present_.resize(width, height);
         resolution_->present(*renderer_, present_.framebuffer(), width, height);
@@ -972,6 +973,7 @@ private:
         splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
         int renderW = width, renderH = height;
         resolution_->internalSize(width, height, renderW, renderH);
+        splitRenderer_->setOutputSize(width, height);
         splitRenderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
         int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
         resolution_->present(*splitRenderer_, present_.framebuffer(), width, height, x);
@@ -992,7 +994,7 @@ private:
 
     // PNG: the window image (with the UI when shown). EXR: the renderer's HDR radiance (or debug view), linear.
     void writeScreenshot(const std::string& path) {
-        int width = renderer_->targets().width(), height = renderer_->targets().height();
+        int width = renderer_->targets().postWidth(), height = renderer_->targets().postHeight();
         if (imageFormatForPath(path, "--screenshot") == ImageFormat::Exr) {
             std::vector<float> hdr = renderer_->readHdr();
             writeExr(path, hdr.data(), width, height);

@@ -23,7 +23,8 @@ void WindowResolution::addFrame(double frameMs) {
 
 void WindowResolution::present(const Renderer& renderer, GLuint target, int windowW, int windowH, int fromColumn) {
     const FrameTargets& t = renderer.targets();
-    upscale_.draw(t.displayTexture(), t.displayFramebuffer(), t.width(), t.height(), target, windowW, windowH,
+    // Under TAA upsampling the display image already has the window's size and this is a copy.
+    upscale_.draw(t.displayTexture(), t.displayFramebuffer(), t.postWidth(), t.postHeight(), target, windowW, windowH,
                   fromColumn);
 }
 

@@ -25,6 +25,9 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
         if (glintPart && !glintPart_) allocateGlintPart();
         return;
     }
+    // Post targets of another size than the render size (TAA upsampling) survive a render-size change: dynamic
+    // resolution changes it every few frames while the output size stays.
+    const bool postWasRenderSize = postWidth_ == width_ && postHeight_ == height_;
     width_ = width;
     height_ = height;
     glintEnvironment_ = {};  // reallocated below at the new size when needed
@@ -42,10 +45,23 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
         depth_.id());
     hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
     hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()});
-    display_ = gl::createTexture2D(GL_RGBA8, width, height);
-    displayFbo_ = gl::createFramebuffer("display", {display_.id()});
+    if (postWasRenderSize || !display_) {
+        postWidth_ = postHeight_ = 0;
+        resizePost(width, height);   // the renderer asks for another post size when TAA upsamples
+    } else if (postWidth_ == width && postHeight_ == height) {
+        postHdr_ = {};               // the post size is the render size now: the HDR target itself
+    }
     if (glintPost) allocateGlintPost();
     if (glintPart) allocateGlintPart();
+}
+
+void FrameTargets::resizePost(int width, int height) {
+    if (width == postWidth_ && height == postHeight_) return;
+    postWidth_ = width;
+    postHeight_ = height;
+    postHdr_ = width == width_ && height == height_ ? gl::Texture{} : gl::createTexture2D(GL_RGBA32F, width, height);
+    display_ = gl::createTexture2D(GL_RGBA8, width, height);
+    displayFbo_ = gl::createFramebuffer("display", {display_.id()});
 }
 
 void FrameTargets::allocateGlintPost() {

@@ -15,13 +15,21 @@ public:
     void resize(int width, int height, bool glintPost = false, bool glintPart = false);
     int width() const { return width_; }
     int height() const { return height_; }
+    // The image pipeline after TAA (exposure, bloom, tone mapping, the display image) runs at the post size: the
+    // render size, or the output size when TAA upsamples (TAAU, docs/image.md). Call after resize().
+    void resizePost(int width, int height);
+    int postWidth() const { return postWidth_; }
+    int postHeight() const { return postHeight_; }
+    // The HDR radiance the post passes read: hdrTexture() itself at the render size, else a target of the post size
+    // that the TAA pass resolves into.
+    GLuint postHdrTexture() const { return postHdr_ ? postHdr_.id() : hdr_.id(); }
 
     GLuint gbufferFramebuffer() const { return gbufferFbo_.id(); }
     GLuint gbufferTexture(int i) const { return gbuffer_[i].id(); }
     GLuint depthTexture() const { return depth_.id(); }
     GLuint hdrFramebuffer() const { return hdrFbo_.id(); }
     GLuint hdrTexture() const { return hdr_.id(); }
-    GLuint displayFramebuffer() const { return displayFbo_.id(); }
+    GLuint displayFramebuffer() const { return displayFbo_.id(); }   // post size
     GLuint displayTexture() const { return display_.id(); }
 
     // Methods with a glint post pass (GlintMethod::glintPostPass). The lighting pass of such a method draws into
@@ -39,7 +47,8 @@ public:
     GLuint glintPartTexture() const { return glintPart_.id(); }
 
 private:
-    int width_ = 0, height_ = 0;
+    int width_ = 0, height_ = 0, postWidth_ = 0, postHeight_ = 0;
+    gl::Texture postHdr_;   // empty when the post size is the render size
     gl::Texture gbuffer_[kGBufferColorCount];
     gl::Texture depth_, hdr_, display_;
     gl::Framebuffer gbufferFbo_, hdrFbo_, displayFbo_;

@@ -10,6 +10,7 @@
 #include "render/aov.h"
 #include "render/image/supersample.h"
 #include "render/shadow_maps.h"
+#include "render/upscale.h"
 #include "scene/scene_loader.h"
 
 namespace glimmer {
@@ -66,12 +67,15 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
         return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
     };
+    const int renderW = std::max(1, int(std::lround(request.renderScale * float(request.width))));
+    const int renderH = std::max(1, int(std::lround(request.renderScale * float(request.height))));
+    renderer_->setOutputSize(request.width, request.height);
     for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
         Stopwatch clock;
         double cpuStart = processCpuMs();
         for (int sample = 0; sample < samples; ++sample) {
             renderer_->setSampleIndex(uint32_t(sample));
-            renderer_->render(scene_, *gpuScene_, camera, request.width, request.height, sample + 1 == samples);
+            renderer_->render(scene_, *gpuScene_, camera, renderW, renderH, sample + 1 == samples);
             if (samples >= 64 && (sample + 1) % (samples / 8) == 0)
                 log::info("render: ", sample + 1, " / ", samples, " samples");
         }
@@ -85,6 +89,11 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     result.height = request.height;
     result.hdr = renderer_->readHdr();
     result.display = renderer_->readDisplay();
+    const int postW = renderer_->targets().postWidth(), postH = renderer_->targets().postHeight();
+    if (postW != request.width || postH != request.height) {   // no TAA upsampling: the spatial upscale
+        result.hdr = catmullRomUpscale(result.hdr, postW, postH, request.width, request.height);
+        result.display = catmullRomUpscale(result.display, postW, postH, request.width, request.height);
+    }
 
     auto passList = [](const std::vector<PassTiming>& timings) {
         nlohmann::json list = nlohmann::json::array();
@@ -102,6 +111,8 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     for (float v : result.hdr) nonFinite += !std::isfinite(v);
     result.stats = {
         {"resolution", {request.width, request.height}},
+        {"render_resolution", {renderW, renderH}},
+        {"upscale", renderer_->upsampled() ? "taa" : (postW != request.width || postH != request.height) ? "catmull-rom" : "none"},
         {"backend", backendName(context_->backend())},
         {"gl_renderer", rendererName},
         {"gl_version", context_->versionString()},

@@ -24,6 +24,10 @@ struct RenderRequest {
     RenderSettings settings;
     std::filesystem::path shaderRoot;  // empty = defaultShaderDir()
     int frames = 1;                    // frames rendered (the last one is read back)
+    // The scene renders at round(renderScale x size) (at least 1 pixel) and the result has `width` x `height`:
+    // with aa=taa TAA resolves to it (TAA upsampling), otherwise the display and HDR images are upscaled with
+    // the window's Catmull-Rom filter (render/upscale.h). 1: no scaling.
+    float renderScale = 1.0f;
     int spp = 1;                       // samples per pixel for accumulating integrators (environment lighting)
     // --env: overrides Scene::environment ("" or "procedural", "none", "constant:R,G,B", or an image path).
     std::optional<std::string> environment;

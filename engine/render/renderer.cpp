@@ -261,6 +261,11 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     ReflectionProbes::Update probeUpdate;
     if (probesActive) probeUpdate = probes_->update(scene, gpuScene, environment_, settings_);
     targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
+    // TAA upsampling: the history, the post passes and the display image at the output size.
+    const bool upsample = temporalAa && outputWidth_ >= width && outputHeight_ >= height &&
+                          (outputWidth_ > width || outputHeight_ > height);
+    const int postWidth = upsample ? outputWidth_ : width, postHeight = upsample ? outputHeight_ : height;
+    targets_.resizePost(postWidth, postHeight);
     timer_.beginFrame(measurePasses     ? PassTimer::Mode::Measure
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
@@ -284,7 +289,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     lastJitter_ = glm::vec2(0.0f);
     if (temporalAa) {
         const glm::vec3 forward = -glm::vec3(glm::inverse(uniforms.view)[2]);
-        lastJitter_ = taaPass_->beginFrame(uniforms.projection * uniforms.view, camera.position, forward, width, height);
+        lastJitter_ = taaPass_->beginFrame(uniforms.projection * uniforms.view, camera.position, forward, width, height,
+                                           postWidth, postHeight);
         uniforms.projection = image::jitteredProjection(uniforms.projection, lastJitter_, {width, height});
     } else {
         taaPass_->reset();
@@ -344,11 +350,12 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
 void Renderer::setExposureAdaptation(float weight) { exposurePass_->setAdaptation(weight); }
 float Renderer::meteredExposureEv() const { return exposurePass_->meteredEv(); }
 unsigned Renderer::taaFrames() const { return taaPass_->framesSinceReset(); }
+unsigned Renderer::taaResets() const { return taaPass_->resets(); }
 void Renderer::resetHistory() { taaPass_->reset(); }
 
 std::vector<float> Renderer::readHdr() const {
-    std::vector<float> pixels(size_t(targets_.width()) * targets_.height() * 4);
-    glGetTextureImage(targets_.hdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
+    std::vector<float> pixels(size_t(targets_.postWidth()) * targets_.postHeight() * 4);
+    glGetTextureImage(targets_.postHdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(float)), pixels.data());
     return pixels;
 }
 
@@ -366,7 +373,7 @@ std::vector<float> Renderer::readGlintLights() const {
 }
 
 std::vector<uint8_t> Renderer::readDisplay() const {
-    std::vector<uint8_t> pixels(size_t(targets_.width()) * targets_.height() * 4);
+    std::vector<uint8_t> pixels(size_t(targets_.postWidth()) * targets_.postHeight() * 4);
     glGetTextureImage(targets_.displayTexture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
     return pixels;
 }

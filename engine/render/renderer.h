@@ -78,6 +78,12 @@ public:
     // With measurePasses, each pass is closed by glFinish and timed (adds sync points; off in the window).
     void render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                 bool measurePasses = false);
+    // The size the frame is displayed at (0 x 0: the render size). With aa=taa and a render size below it, the TAA
+    // pass resolves to this size (TAA upsampling) and the post passes and the display image have it; otherwise
+    // they have the render size and the caller upscales (render/upscale.h). targets().postWidth() tells which.
+    void setOutputSize(int width, int height) { outputWidth_ = width, outputHeight_ = height; }
+    // Whether the last frame was upsampled by TAA.
+    bool upsampled() const { return targets_.postWidth() != targets_.width() || targets_.postHeight() != targets_.height(); }
     const std::vector<PassTiming>& passTimings() const { return timer_.timings(); }
     // The on-demand passes of the last frame that ran any (method / IBL-mode data rebuilt after an edit, wall ms),
     // kept until the next edit so the window can show them.
@@ -92,7 +98,7 @@ public:
     const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
 
     const FrameTargets& targets() const { return targets_; }
-    // Readbacks, bottom row first (GL order).
+    // Readbacks, bottom row first (GL order), at the post size (targets().postWidth() x postHeight()).
     std::vector<float> readHdr() const;        // RGBA32F
     std::vector<uint8_t> readDisplay() const;  // RGBA8, tone-mapped sRGB
     // The method passes' inputs of the last frame (methods with GlintMethod::glintPostPass, else empty): the
@@ -109,6 +115,7 @@ public:
     float meteredExposureEv() const;
     // TAA: frames accumulated since the last history reset, the jitter of the last frame (pixels), a reset.
     unsigned taaFrames() const;
+    unsigned taaResets() const;
     glm::vec2 lastJitter() const { return lastJitter_; }
     void resetHistory();
 
@@ -162,6 +169,7 @@ private:
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
     uint32_t frameIndex_ = 0;
+    int outputWidth_ = 0, outputHeight_ = 0;
 };
 
 }  // namespace glimmer

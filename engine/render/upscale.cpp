@@ -46,9 +46,11 @@ std::array<float, 4> catmullRomWeights(float t) {
 }
 }  // namespace
 
-std::vector<uint8_t> catmullRomUpscale(const std::vector<uint8_t>& source, int sourceW, int sourceH, int targetW,
-                                       int targetH) {
-    std::vector<uint8_t> out(size_t(targetW) * size_t(targetH) * 4);
+namespace {
+// One separable pass structure for both formats: `fetch(x, y, c)` reads channel c of a source texel as a float,
+// `store(o, c, v)` writes channel c of the output texel index o.
+template <typename Fetch, typename Store>
+void catmullRomResample(int sourceW, int sourceH, int targetW, int targetH, int channels, Fetch fetch, Store store) {
     float sx = float(sourceW) / float(targetW), sy = float(sourceH) / float(targetH);
     for (int y = 0; y < targetH; ++y) {
         float py = (float(y) + 0.5f) * sy - 0.5f, by = std::floor(py);
@@ -56,22 +58,40 @@ std::vector<uint8_t> catmullRomUpscale(const std::vector<uint8_t>& source, int s
         for (int x = 0; x < targetW; ++x) {
             float px = (float(x) + 0.5f) * sx - 0.5f, bx = std::floor(px);
             auto wx = catmullRomWeights(px - bx);
-            float sum[3] = {0, 0, 0};
+            float sum[4] = {0, 0, 0, 0};
             for (int j = 0; j < 4; ++j) {
                 int yy = std::clamp(int(by) - 1 + j, 0, sourceH - 1);
-                float row[3] = {0, 0, 0};
+                float row[4] = {0, 0, 0, 0};
                 for (int i = 0; i < 4; ++i) {
                     int xx = std::clamp(int(bx) - 1 + i, 0, sourceW - 1);
-                    const uint8_t* texel = &source[(size_t(yy) * size_t(sourceW) + size_t(xx)) * 4];
-                    for (int c = 0; c < 3; ++c) row[c] += wx[size_t(i)] * (float(texel[c]) / 255.0f);
+                    for (int c = 0; c < channels; ++c) row[c] += wx[size_t(i)] * fetch(xx, yy, c);
                 }
-                for (int c = 0; c < 3; ++c) sum[c] += wy[size_t(j)] * row[c];
+                for (int c = 0; c < channels; ++c) sum[c] += wy[size_t(j)] * row[c];
             }
-            uint8_t* o = &out[(size_t(y) * size_t(targetW) + size_t(x)) * 4];
-            for (int c = 0; c < 3; ++c) o[c] = uint8_t(std::lround(std::clamp(sum[c], 0.0f, 1.0f) * 255.0f));
-            o[3] = 255;
+            size_t o = size_t(y) * size_t(targetW) + size_t(x);
+            for (int c = 0; c < channels; ++c) store(o, c, sum[c]);
         }
     }
+}
+}  // namespace
+
+std::vector<uint8_t> catmullRomUpscale(const std::vector<uint8_t>& source, int sourceW, int sourceH, int targetW,
+                                       int targetH) {
+    std::vector<uint8_t> out(size_t(targetW) * size_t(targetH) * 4, 255);
+    catmullRomResample(
+        sourceW, sourceH, targetW, targetH, 3,
+        [&](int x, int y, int c) { return float(source[(size_t(y) * size_t(sourceW) + size_t(x)) * 4 + size_t(c)]) / 255.0f; },
+        [&](size_t o, int c, float v) { out[o * 4 + size_t(c)] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); });
+    return out;
+}
+
+std::vector<float> catmullRomUpscale(const std::vector<float>& source, int sourceW, int sourceH, int targetW,
+                                     int targetH) {
+    std::vector<float> out(size_t(targetW) * size_t(targetH) * 4);
+    catmullRomResample(
+        sourceW, sourceH, targetW, targetH, 4,
+        [&](int x, int y, int c) { return source[(size_t(y) * size_t(sourceW) + size_t(x)) * 4 + size_t(c)]; },
+        [&](size_t o, int c, float v) { out[o * 4 + size_t(c)] = std::max(v, 0.0f); });
     return out;
 }
 

@@ -29,5 +29,9 @@ private:
 // computes in float and rounds on store; this one too, so results agree to one 8-bit step.
 std::vector<uint8_t> catmullRomUpscale(const std::vector<uint8_t>& source, int sourceW, int sourceH, int targetW,
                                        int targetH);
+// The same filter on RGBA32F radiance (all four channels), negative lobes' undershoot clamped to 0: what an
+// offscreen render at render_scale < 1 without TAA upsampling returns as its HDR image (render/offscreen.h).
+std::vector<float> catmullRomUpscale(const std::vector<float>& source, int sourceW, int sourceH, int targetW,
+                                     int targetH);
 
 }  // namespace glimmer

@@ -14,6 +14,7 @@
 // brightest glint of the current 3x3 neighbourhood: a sparkle that is still there keeps its accumulated value, a
 // sparkle that went out (new view angle, disocclusion) cannot leave a trail.
 #include "common/bindings.glsl"
+#include "image/taa_common.glsl"
 layout(binding = UNIT_TAA_CURRENT) uniform sampler2D t_current;        // HDR radiance of this frame (glints included)
 layout(binding = UNIT_TAA_GLINT_PART) uniform sampler2D t_currentGlint;   // the glint part of t_current
 layout(binding = UNIT_TAA_DEPTH) uniform sampler2D t_depth;          // reversed-Z depth of this frame
@@ -31,41 +32,6 @@ in vec2 v_ndc;
 layout(location = 0) out vec4 o_historyBase;
 layout(location = 1) out vec4 o_historyGlint;
 layout(location = 2) out vec4 o_resolved;
-
-vec3 rgbToYCoCg(vec3 c) {
-    return vec3(dot(c, vec3(0.25, 0.5, 0.25)), dot(c, vec3(0.5, 0.0, -0.5)), dot(c, vec3(-0.25, 0.5, -0.25)));
-}
-vec3 yCoCgToRgb(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
-
-vec3 finiteOrZero(vec3 c) { return any(isnan(c)) || any(isinf(c)) ? vec3(0.0) : c; }
-
-// Catmull-Rom history fetch with 5 bilinear taps (the 4x4 kernel without its corners, renormalised).
-vec3 sampleHistoryCatmullRom(vec2 uv, vec2 size) {
-    vec2 position = uv * size;
-    vec2 center1 = floor(position - 0.5) + 0.5;
-    vec2 f = position - center1;
-    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
-    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
-    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
-    vec2 w3 = f * f * (-0.5 + 0.5 * f);
-    vec2 w12 = w1 + w2;
-    vec2 p0 = (center1 - 1.0) / size, p3 = (center1 + 2.0) / size, p12 = (center1 + w2 / w12) / size;
-    vec3 sum = textureLod(t_historyBase, vec2(p12.x, p0.y), 0.0).rgb * (w12.x * w0.y) +
-               textureLod(t_historyBase, vec2(p0.x, p12.y), 0.0).rgb * (w0.x * w12.y) +
-               textureLod(t_historyBase, p12, 0.0).rgb * (w12.x * w12.y) +
-               textureLod(t_historyBase, vec2(p3.x, p12.y), 0.0).rgb * (w3.x * w12.y) +
-               textureLod(t_historyBase, vec2(p12.x, p3.y), 0.0).rgb * (w12.x * w3.y);
-    float weight = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
-    return max(sum / weight, vec3(0.0));
-}
-
-// Moves `history` along the line to `center` until it is inside the box center +- extent (Salvi 2016).
-vec3 clipToBox(vec3 history, vec3 center, vec3 extent) {
-    vec3 offset = history - center;
-    vec3 units = abs(offset / max(extent, vec3(1e-7)));
-    float largest = max(units.x, max(units.y, units.z));
-    return largest > 1.0 ? center + offset / largest : history;
-}
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -100,7 +66,7 @@ void main() {
     if (valid) {
         samples = texelFetch(t_historyBase, clamp(ivec2(previousUv * vec2(size)), ivec2(0), size - 1), 0).a;
         float weight = max(1.0 / (samples + 1.0), u_feedback);
-        vec3 historyBase = sampleHistoryCatmullRom(previousUv, vec2(size));
+        vec3 historyBase = sampleHistoryCatmullRom(t_historyBase, previousUv, vec2(size));
         historyBase = yCoCgToRgb(clipToBox(rgbToYCoCg(historyBase), mean, u_clipGamma * sigma));
         vec3 historyGlint = min(max(textureLod(t_historyGlint, previousUv, 0.0).rgb, vec3(0.0)), glintMax);
         base = mix(historyBase, currentBase, weight);

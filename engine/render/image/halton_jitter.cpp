@@ -1,5 +1,8 @@
 #include "render/image/halton_jitter.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace glimmer::image {
 
 float radicalInverse(unsigned index, unsigned base) {
@@ -8,10 +11,15 @@ float radicalInverse(unsigned index, unsigned base) {
     return result;
 }
 
-glm::vec2 haltonJitter(unsigned framesSinceReset) {
+int jitterPhases(float upscaleRatio) {
+    float r = std::max(upscaleRatio, 1.0f);
+    return std::max(kJitterSamples, int(std::ceil(8.0f * r * r - 1e-4f)));
+}
+
+glm::vec2 haltonJitter(unsigned framesSinceReset, int phases) {
     if (framesSinceReset == 0) return glm::vec2(0.0f);
-    // Indices 1..16 (index 0 of Halton is the origin, a corner of the pixel, not its centre).
-    unsigned index = (framesSinceReset - 1) % kJitterSamples + 1;
+    // Indices 1..phases (index 0 of Halton is the origin, a corner of the pixel, not its centre).
+    unsigned index = (framesSinceReset - 1) % unsigned(std::max(phases, 1)) + 1;
     return glm::vec2(radicalInverse(index, 2), radicalInverse(index, 3)) - 0.5f;
 }
 

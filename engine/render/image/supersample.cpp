@@ -33,6 +33,7 @@ RenderResult supersampledRender(const RenderRequest& request,
                          " is too large (lower ssaa.factor or --size)");
     big.settings.apply("aa=off");
     big.frames = 1;
+    big.renderScale = 1.0f;   // the reference is rendered at the full size
     RenderResult result = renderOnce(big);
     result.hdr = boxDownsample(result.hdr, request.width, request.height, factor);
     result.width = request.width;

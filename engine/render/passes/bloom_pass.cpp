@@ -45,7 +45,8 @@ void BloomPass::resize(int width, int height) {
 }
 
 void BloomPass::execute(const FrameContext& frame) {
-    apply(frame.targets.hdrTexture(), frame.width, frame.height, frame.settings.common_("bloom.radius"),
+    apply(frame.targets.postHdrTexture(), frame.targets.postWidth(), frame.targets.postHeight(),
+          frame.settings.common_("bloom.radius"),
           frame.emptyVao);
 }
 

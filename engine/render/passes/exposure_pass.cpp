@@ -25,9 +25,11 @@ void ExposurePass::execute(const FrameContext& frame) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_HISTOGRAM, histogramBins_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_STATE, state_.id());
     histogram_.use();
-    glBindTextureUnit(UNIT_EXPOSURE_HDR, frame.targets.hdrTexture());
-    glProgramUniform2i(histogram_.id(), 0, frame.width, frame.height);
-    glDispatchCompute(GLuint((frame.width + 15) / 16), GLuint((frame.height + 15) / 16), 1);
+    // The post passes run at the post size (the output size under TAA upsampling; FrameTargets::resizePost).
+    const int width = frame.targets.postWidth(), height = frame.targets.postHeight();
+    glBindTextureUnit(UNIT_EXPOSURE_HDR, frame.targets.postHdrTexture());
+    glProgramUniform2i(histogram_.id(), 0, width, height);
+    glDispatchCompute(GLuint((width + 15) / 16), GLuint((height + 15) / 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     adapt_.use();
     glProgramUniform1f(adapt_.id(), 0, adaptation_);

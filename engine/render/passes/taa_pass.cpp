@@ -1,5 +1,6 @@
 #include "render/passes/taa_pass.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -18,7 +19,9 @@ constexpr float kCutCosine = 0.9f;             // ~26 degrees of rotation
 
 TaaPass::TaaPass(const std::filesystem::path& shaderRoot)
     : program_(shaderRoot, {"image/taa_resolve",
-                            {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "image/taa_resolve.frag"}}}) {
+                            {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "image/taa_resolve.frag"}}}),
+      upsample_(shaderRoot, {"image/taa_upsample",
+                             {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "image/taa_upsample.frag"}}}) {
     linearClamp_ = gl::createLinearClampSampler();
 }
 
@@ -51,8 +54,8 @@ void TaaPass::resize(int width, int height) {
 }
 
 glm::vec2 TaaPass::beginFrame(const glm::mat4& unjitteredViewProjection, glm::vec3 cameraPosition,
-                              glm::vec3 forward, int width, int height) {
-    resize(width, height);
+                              glm::vec3 forward, int width, int height, int outputWidth, int outputHeight) {
+    resize(outputWidth, outputHeight);
     if (glm::distance(cameraPosition, previousPosition_) > kCutDistance ||
         glm::dot(glm::normalize(forward), previousForward_) < kCutCosine)
         reset();
@@ -60,15 +63,19 @@ glm::vec2 TaaPass::beginFrame(const glm::mat4& unjitteredViewProjection, glm::ve
     previousForward_ = glm::normalize(forward);
     previousViewProjection_ = framesSinceReset_ == 0 ? unjitteredViewProjection : viewProjection_;
     viewProjection_ = unjitteredViewProjection;
-    return image::haltonJitter(framesSinceReset_);
+    const float ratio = std::max(float(outputWidth) / float(width), float(outputHeight) / float(height));
+    jitter_ = image::haltonJitter(framesSinceReset_, image::jitterPhases(ratio));
+    return jitter_;
 }
 
 void TaaPass::execute(const FrameContext& frame) {
-    resize(frame.width, frame.height);
+    resize(frame.targets.postWidth(), frame.targets.postHeight());
+    const bool upsampling = width_ != frame.width || height_ != frame.height;
+    gl::Program& program = upsampling ? upsample_ : program_;
     const int previous = current_;
     current_ = 1 - current_;
     gl::fullscreenState(resolveFbo_[current_].id(), width_, height_).apply();
-    program_.use();
+    program.use();
     glBindTextureUnit(UNIT_TAA_CURRENT, frame.targets.hdrTexture());
     glBindTextureUnit(UNIT_TAA_GLINT_PART, frame.targets.glintPartTexture());
     glBindTextureUnit(UNIT_TAA_DEPTH, frame.targets.depthTexture());
@@ -77,19 +84,23 @@ void TaaPass::execute(const FrameContext& frame) {
     glBindSampler(UNIT_TAA_HISTORY_BASE, linearClamp_.id());
     glBindSampler(UNIT_TAA_HISTORY_GLINT, linearClamp_.id());
     const glm::mat4 reprojection = previousViewProjection_ * glm::inverse(viewProjection_);
-    glProgramUniformMatrix4fv(program_.id(), 0, 1, GL_FALSE, &reprojection[0][0]);
-    glProgramUniform1i(program_.id(), 1, framesSinceReset_ == 0 ? 1 : 0);
-    glProgramUniform1f(program_.id(), 2, frame.settings.common_("taa.feedback"));
-    glProgramUniform1f(program_.id(), 3, 1.25f);   // variance clip box half-size, standard deviations (Salvi 2016)
-    glProgramUniform1i(program_.id(), 4, frame.settings.common_("taa.glint_history") > 0.5f ? 1 : 0);
-    glProgramUniform1f(program_.id(), 5, frame.settings.common_("taa.glint_feedback"));
+    glProgramUniformMatrix4fv(program.id(), 0, 1, GL_FALSE, &reprojection[0][0]);
+    glProgramUniform1i(program.id(), 1, framesSinceReset_ == 0 ? 1 : 0);
+    glProgramUniform1f(program.id(), 2, frame.settings.common_("taa.feedback"));
+    glProgramUniform1f(program.id(), 3, 1.25f);   // variance clip box half-size, standard deviations (Salvi 2016)
+    glProgramUniform1i(program.id(), 4, frame.settings.common_("taa.glint_history") > 0.5f ? 1 : 0);
+    glProgramUniform1f(program.id(), 5, frame.settings.common_("taa.glint_feedback"));
+    if (upsampling) {
+        glProgramUniform2f(program.id(), 6, jitter_.x, jitter_.y);
+        glProgramUniform1f(program.id(), 7, kUpsampleKernelWidth);
+    }
     glBindVertexArray(frame.emptyVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindSampler(UNIT_TAA_HISTORY_BASE, 0);
     glBindSampler(UNIT_TAA_HISTORY_GLINT, 0);
-    // The passes after this one read the HDR target: the resolve replaces it.
-    glCopyImageSubData(resolved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, frame.targets.hdrTexture(), GL_TEXTURE_2D, 0, 0, 0,
-                       0, width_, height_, 1);
+    // The passes after this one read the post HDR target (the HDR target itself without upsampling).
+    glCopyImageSubData(resolved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, frame.targets.postHdrTexture(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, width_, height_, 1);
     ++framesSinceReset_;
 }
 

@@ -11,11 +11,11 @@ TonemapPass::TonemapPass(const std::filesystem::path& shaderRoot, const BloomPas
       exposure_(exposure) {}
 
 void TonemapPass::execute(const FrameContext& frame) {
-    gl::fullscreenState(frame.targets.displayFramebuffer(), frame.width, frame.height).apply();
+    gl::fullscreenState(frame.targets.displayFramebuffer(), frame.targets.postWidth(), frame.targets.postHeight()).apply();
     program_.use();
     const bool bloom = BloomPass::wanted(frame.settings) && bloom_.result();
-    glBindTextureUnit(UNIT_TONEMAP_HDR, frame.targets.hdrTexture());
-    glBindTextureUnit(UNIT_TONEMAP_BLOOM, bloom ? bloom_.result() : frame.targets.hdrTexture());
+    glBindTextureUnit(UNIT_TONEMAP_HDR, frame.targets.postHdrTexture());
+    glBindTextureUnit(UNIT_TONEMAP_BLOOM, bloom ? bloom_.result() : frame.targets.postHdrTexture());
     exposure_.bindState();
     glProgramUniform1i(program_.id(), 0, int(frame.settings.common_("tonemap")));
     glProgramUniform1f(program_.id(), 1, bloom ? frame.settings.common_("bloom.strength") : 0.0f);
