@@ -381,6 +381,10 @@ private:
         }
     }
 
+    bool panelScriptInputPending() const {
+        return pendingScriptInput_.focusMove != 0 || pendingScriptInput_.adjust != 0 || pendingScriptInput_.activate;
+    }
+
     // One input-script event at frame-clock time `t`: keys go through the same paths as the window's.
     void applyScriptEvent(const ui::ScriptEvent& e, double t, int width, int height) {
         auto action = [&](int key) {
@@ -557,14 +561,18 @@ private:
             controls_.moveSpeed = std::clamp(controls_.moveSpeed * std::pow(kWheelSpeedFactor, float(events.scrollY)),
                                              speed.minValue, speed.maxValue);
         }
-        // Script events apply at their own times, with the motion advanced exactly up to each one.
+        // Script events apply at their own times, with the motion advanced exactly up to each one. At most one panel
+        // key per frame: the panel folds a frame's keys into one input (moves summed, then activate), so "enter, up"
+        // in one long frame would act as "up, enter"; the rest waits for the next frame, in order.
         double at = from;
         if (script_ && scriptOffset_ >= 0.0)
-            for (const ui::ScriptEvent& e : script_->due(to - scriptOffset_)) {
-                double t = std::max(at, e.seconds + scriptOffset_);
+            while (!panelScriptInputPending()) {
+                const ui::ScriptEvent* e = script_->nextDue(to - scriptOffset_);
+                if (!e) break;
+                double t = std::max(at, e->seconds + scriptOffset_);
                 advanceTo(at, t);
                 at = t;
-                applyScriptEvent(e, t, width, height);
+                applyScriptEvent(*e, t, width, height);
             }
         advanceTo(at, to);
         keys_.forgetBefore(to);

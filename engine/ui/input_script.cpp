@@ -87,4 +87,9 @@ std::vector<ScriptEvent> ScriptPlayer::due(double seconds) {
     return out;
 }
 
+const ScriptEvent* ScriptPlayer::nextDue(double seconds) {
+    if (next_ < events_.size() && events_[next_].seconds <= seconds) return &events_[next_++];
+    return nullptr;
+}
+
 }  // namespace glimmer::ui

@@ -35,6 +35,8 @@ class ScriptPlayer {
 public:
     explicit ScriptPlayer(std::vector<ScriptEvent> events) : events_(std::move(events)) {}
     std::vector<ScriptEvent> due(double seconds);
+    // The next due event, removed; nullptr when none is due (valid until the next call).
+    const ScriptEvent* nextDue(double seconds);
     bool finished() const { return next_ >= events_.size(); }
 
 private:
