@@ -55,10 +55,6 @@ const nlohmann::json& tinySuiteJson() {
     return json;
 }
 
-}  // namespace
-
-namespace {
-
 // The run's derived figures (checked in the same test: the run is most of a minute on llvmpipe).
 void expectDerivedFiguresPositiveAndFinite(const nlohmann::json& derived) {
     for (const std::string& method : methodIds()) {

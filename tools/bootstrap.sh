@@ -50,7 +50,7 @@ cmake --build "$build_dir" -j "$jobs"
 if [ "$mode" = test ]; then
   export GALLIUM_OVERRIDE_CPU_CAPS=avx   # bit-stable llvmpipe output across AVX2 / AVX-512 machines
   ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
-  # The loaders under ASan + UBSan: their tests, then each libFuzzer target for a minute (fails on a crash).
+  # The loaders under ASan + UBSan: their tests, then each libFuzzer target for 25 s (fails on a crash).
   [ "$fuzz" = 0 ] || bash tools/fuzz.sh "${GLIMMER_FUZZ_SECONDS:-25}"
 else
   exec "$build_dir/glimmer" main

@@ -81,12 +81,6 @@ std::vector<ScriptEvent> readInputScript(const std::filesystem::path& file) {
     return parseInputScript(readTextFile(file), file.string());
 }
 
-std::vector<ScriptEvent> ScriptPlayer::due(double seconds) {
-    std::vector<ScriptEvent> out;
-    while (next_ < events_.size() && events_[next_].seconds <= seconds) out.push_back(events_[next_++]);
-    return out;
-}
-
 const ScriptEvent* ScriptPlayer::nextDue(double seconds) {
     if (next_ < events_.size() && events_[next_].seconds <= seconds) return &events_[next_++];
     return nullptr;

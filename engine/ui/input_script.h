@@ -30,12 +30,11 @@ std::vector<ScriptEvent> parseInputScript(const std::string& text, const std::st
 // GLFW_KEY_* for a key name ("w", "f5", "shift"), -1 when unknown.
 int keyFromName(const std::string& name);
 
-// Hands out the events that are due, in order.
+// Hands out the events that are due, one at a time, in order (the window may hold the rest for a later frame).
 class ScriptPlayer {
 public:
     explicit ScriptPlayer(std::vector<ScriptEvent> events) : events_(std::move(events)) {}
-    std::vector<ScriptEvent> due(double seconds);
-    // The next due event, removed; nullptr when none is due (valid until the next call).
+    // The next event due by `seconds`, removed; nullptr when none is due (valid until the next call).
     const ScriptEvent* nextDue(double seconds);
     bool finished() const { return next_ >= events_.size(); }
 
