@@ -657,6 +657,17 @@ TEST(ScenesAtrium, GrazingCameraReachesHighFootprintAnisotropy) {
     EXPECT_GT(above16, size_t(256)) << "more than a line of pixels";
 }
 
+// The atrium goldens' 8x8 block tolerance. With the same sources and the same Mesa (22.3.6-1+deb12u2), llvmpipe's
+// atrium images differ between machines: the CI machine of 2026-12-02 (and the development machine of that day)
+// were 2.61/255 off in one block of the objects camera and 2.19/255 of the overview, where the AMD EPYC machine of
+// 2026-12-03 matches the references exactly (no other golden failed on either). 4/255 covers that with margin;
+// CamerasGoldenToleranceCatchesSmallChanges below shows that changes a user would see still fail.
+glimmer::test::GoldenOptions atriumGoldenOptions() {
+    glimmer::test::GoldenOptions options;
+    options.blockThreshold = 4.0f / 255.0f;
+    return options;
+}
+
 // Golden images of every atrium camera at 256x256 (smooth method), through the lead's golden framework
 // (tests/support/golden.h; GLIMMER_UPDATE_GOLDEN=1 rewrites tests/golden/ref/atrium_<camera>.png).
 TEST(ScenesAtrium, CamerasMatchGoldenImages) {
@@ -667,8 +678,28 @@ TEST(ScenesAtrium, CamerasMatchGoldenImages) {
         SCOPED_TRACE(camera.name);
         r.camera = camera.name;
         glimmer::RenderResult result = session.render(r);
-        glimmer::test::GoldenComparison comparison =
-            glimmer::test::compareWithGolden("atrium_" + camera.name, result.display, result.width, result.height);
+        glimmer::test::GoldenComparison comparison = glimmer::test::compareWithGolden(
+            "atrium_" + camera.name, result.display, result.width, result.height, atriumGoldenOptions());
         EXPECT_TRUE(comparison.passed) << comparison.message;
+    }
+}
+
+// The widened tolerance still fails small regressions (each at least 10/255 in some block, so a machine that is
+// 2.6/255 off the reference fails them too): a fifth of a stop of exposure, every light 15% weaker,
+// a softer shadow filter.
+TEST(ScenesAtrium, CamerasGoldenToleranceCatchesSmallChanges) {
+    const std::string camera = "objects";
+    glimmer::RenderRequest base = request("atrium", camera);
+    glimmer::OffscreenSession session(base);
+    for (const char* change : {"exposure=0.2", "light.intensity=0.85", "shadow.filter_radius=4"}) {
+        SCOPED_TRACE(change);
+        glimmer::RenderRequest r = base;
+        r.settings.apply(change);
+        glimmer::RenderResult result = session.render(r);
+        std::vector<uint8_t> reference = glimmer::test::readGolden("atrium_" + camera);
+        ASSERT_EQ(reference.size(), result.display.size());
+        glimmer::test::GoldenComparison comparison = glimmer::test::compareImages(
+            reference, result.display, result.width, result.height, atriumGoldenOptions());
+        EXPECT_FALSE(comparison.passed) << comparison.message;
     }
 }

@@ -76,6 +76,12 @@ static std::vector<uint8_t> toBottomUpRgba8(const ImageF& image) {
     return out;
 }
 
+std::vector<uint8_t> readGolden(const std::string& name) {
+    std::filesystem::path reference = goldenReferenceDir() / (name + ".png");
+    if (!std::filesystem::exists(reference)) return {};
+    return toBottomUpRgba8(readImage(reference));
+}
+
 GoldenComparison compareWithGolden(const std::string& name, const std::vector<uint8_t>& rgba, int width, int height,
                                    const GoldenOptions& options) {
     std::filesystem::path reference = goldenReferenceDir() / (name + ".png");

@@ -36,6 +36,9 @@ GoldenComparison compareWithGolden(const std::string& name, const std::vector<ui
 GoldenComparison compareImages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width, int height,
                                const GoldenOptions& options = {});
 
+// The reference <name>.png as 8-bit RGBA rows bottom-up (as compareImages takes them); empty when missing.
+std::vector<uint8_t> readGolden(const std::string& name);
+
 std::filesystem::path goldenReferenceDir();
 std::filesystem::path testOutputDir();  // created on demand
 
