@@ -660,8 +660,9 @@ TEST(ScenesAtrium, GrazingCameraReachesHighFootprintAnisotropy) {
 // The atrium goldens' 8x8 block tolerance. With the same sources and the same Mesa (22.3.6-1+deb12u2), llvmpipe's
 // atrium images differ between machines: the CI machine of 2026-12-02 (and the development machine of that day)
 // were 2.61/255 off in one block of the objects camera and 2.19/255 of the overview, where the AMD EPYC machine of
-// 2026-12-03 matches the references exactly (no other golden failed on either). 4/255 covers that with margin;
+// 2026-12-03 matches the references exactly (no other golden failed in that CI run). 4/255 covers that with margin;
 // CamerasGoldenToleranceCatchesSmallChanges below shows that changes a user would see still fail.
+constexpr float kAtriumMachineDifference = 2.61f / 255.0f;
 glimmer::test::GoldenOptions atriumGoldenOptions() {
     glimmer::test::GoldenOptions options;
     options.blockThreshold = 4.0f / 255.0f;
@@ -684,9 +685,9 @@ TEST(ScenesAtrium, CamerasMatchGoldenImages) {
     }
 }
 
-// The widened tolerance still fails small regressions (each at least 10/255 in some block, so a machine that is
-// 2.6/255 off the reference fails them too): a fifth of a stop of exposure, every light 15% weaker,
-// a softer shadow filter.
+// The widened tolerance still fails small regressions, by more than the machine difference (so a machine that is
+// 2.61/255 off the reference fails them too): a fifth of a stop of exposure, every light 15% weaker, a softer
+// shadow filter (measured 10.19, 10.06 and 11.31/255 in the worst block, 2026-12-03).
 TEST(ScenesAtrium, CamerasGoldenToleranceCatchesSmallChanges) {
     const std::string camera = "objects";
     glimmer::RenderRequest base = request("atrium", camera);
@@ -701,5 +702,7 @@ TEST(ScenesAtrium, CamerasGoldenToleranceCatchesSmallChanges) {
         glimmer::test::GoldenComparison comparison = glimmer::test::compareImages(
             reference, result.display, result.width, result.height, atriumGoldenOptions());
         EXPECT_FALSE(comparison.passed) << comparison.message;
+        EXPECT_GT(comparison.maxBlockError, atriumGoldenOptions().blockThreshold + kAtriumMachineDifference)
+            << comparison.message;
     }
 }

@@ -76,15 +76,17 @@ static std::vector<uint8_t> toBottomUpRgba8(const ImageF& image) {
     return out;
 }
 
+static std::filesystem::path referencePath(const std::string& name) { return goldenReferenceDir() / (name + ".png"); }
+
 std::vector<uint8_t> readGolden(const std::string& name) {
-    std::filesystem::path reference = goldenReferenceDir() / (name + ".png");
+    std::filesystem::path reference = referencePath(name);
     if (!std::filesystem::exists(reference)) return {};
     return toBottomUpRgba8(readImage(reference));
 }
 
 GoldenComparison compareWithGolden(const std::string& name, const std::vector<uint8_t>& rgba, int width, int height,
                                    const GoldenOptions& options) {
-    std::filesystem::path reference = goldenReferenceDir() / (name + ".png");
+    std::filesystem::path reference = referencePath(name);
     const char* update = std::getenv("GLIMMER_UPDATE_GOLDEN");
     if (update && update[0] == '1') {
         std::filesystem::create_directories(reference.parent_path());
