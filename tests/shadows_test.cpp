@@ -7,7 +7,9 @@
 // - a glinty plane has no glint radiance inside the shadow, for every glint method;
 // - a camera translation smaller than a shadow texel does not move the shadow edge by more than 0.5 px;
 // - cached maps: a still camera renders no shadow view after the first frame;
-// - a point light's cube shadow, across two cube faces, within 2 px of the analytic central projection.
+// - a point light's cube shadow, across two cube faces, within 2 px of the analytic central projection;
+// - a spot light's shadow (one view for a narrow cone, a cube for a wide one) within 2 px of the same projection,
+//   cached, with the lit side unchanged and no glint radiance in its shadow.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -116,6 +118,11 @@ struct ShadowRig {
                 double tBox = rayBox(ray.origin, ray.direction, box);
                 if (tBox >= 0.0 && tBox < tPlane) continue;
                 glm::dvec3 p = ray.origin + tPlane * ray.direction;
+                if (light.type == LightType::Spot) {
+                    // Outside the cone (less a margin for the falloff's last percent) no light arrives to shadow.
+                    double cosAxis = glm::dot(glm::normalize(p - glm::dvec3(light.vector)), glm::dvec3(light.spotDirection));
+                    if (cosAxis < std::cos(double(light.outerConeAngle) - 0.03)) continue;
+                }
                 glm::dvec3 towardLight = light.type == LightType::Directional
                                              ? glm::normalize(glm::dvec3(light.vector))
                                              : glm::dvec3(light.vector) - p;
@@ -397,6 +404,99 @@ TEST(Shadows, PointLightCubeShadowMatchesTheCentralProjectionAcrossFaces) {
         }
     EXPECT_GT(below, 100);
     EXPECT_GT(beyond, 100);
+}
+
+Light spotAt(const glm::vec3& position, float outerConeDegrees) {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.vector = position;
+    spot.spotDirection = {0.0f, -1.0f, 0.0f};
+    spot.innerConeAngle = glm::radians(outerConeDegrees * 0.8f);
+    spot.outerConeAngle = glm::radians(outerConeDegrees);
+    spot.intensity = 6.0f;
+    return spot;
+}
+
+TEST(Shadows, SpotLightShadowMatchesTheCentralProjectionAndIsCached) {
+    // A spot 3 m above the plane shining down, a box off its axis. 40 degrees: one perspective view fitted to the
+    // cone; 70 degrees (wider than kMaxSpotViewHalfAngle): the six faces of a cube, by the point lights' code.
+    for (float cone : {40.0f, 70.0f}) {
+        SCOPED_TRACE(cone);
+        ShadowRig rig({{0.3, 1.0, -0.4}, {0.9, 1.6, 0.4}}, spotAt({0.0f, 3.0f, 0.0f}, cone));
+        const Camera& camera = rig.scene.cameras[0];
+        std::vector<int> classes = rig.analytic(camera);
+        BoundaryCheck check = checkBoundary(classes, rig.visibility(RenderSettings{}, camera), rig.size);
+        EXPECT_GT(check.shadowedPixels, 2000);
+        EXPECT_GT(check.litPixels, 10000);
+        EXPECT_EQ(check.misplaced, 0) << "first misplaced pixel at (" << check.firstX << ", " << check.firstY << ")";
+        const int views = cone < 60.0f ? 1 : 6;
+        EXPECT_EQ(rig.renderer->shadowMaps().stats().views, views);
+        // Cached: a still frame renders nothing; turning the spot re-renders its one view (a cube does not depend
+        // on the direction); moving it re-renders every view.
+        rig.render(RenderSettings{}, camera);
+        EXPECT_EQ(rig.renderer->shadowMaps().stats().localViewsRendered, 0) << "still spot re-rendered";
+        rig.scene.lights[0].spotDirection = glm::normalize(glm::vec3(0.1f, -1.0f, 0.0f));
+        rig.render(RenderSettings{}, camera);
+        EXPECT_EQ(rig.renderer->shadowMaps().stats().localViewsRendered, views == 1 ? 1 : 0) << "turned spot";
+        rig.scene.lights[0].vector.x += 0.1f;
+        rig.render(RenderSettings{}, camera);
+        EXPECT_EQ(rig.renderer->shadowMaps().stats().localViewsRendered, views) << "moved spot not re-rendered";
+    }
+}
+
+TEST(Shadows, SpotShadowLeavesTheLitSideAndHoldsNoGlints) {
+    ShadowRig rig({{0.3, 1.0, -0.4}, {0.9, 1.6, 0.4}}, spotAt({0.0f, 3.0f, 0.0f}, 40.0f));
+    const Camera& camera = rig.scene.cameras[0];
+    std::vector<int> classes = rig.analytic(camera);
+    RenderSettings on;
+    on.apply("ao.enabled=0");
+    RenderSettings off = on;
+    off.apply("shadow.enabled=0");
+    std::vector<float> with = rig.render(on, camera), without = rig.render(off, camera);
+    int litCompared = 0, litChanged = 0, shadowCompared = 0, notAmbient = 0;
+    for (int y = 0; y < rig.size; ++y)
+        for (int x = 0; x < rig.size; ++x) {
+            int c = classes[size_t(y) * rig.size + size_t(x)];
+            if (c == kExcluded || nearBoundary(classes, rig.size, x, y, 3)) continue;
+            size_t i = (size_t(y) * rig.size + size_t(x)) * 4;
+            if (c == kLit) {
+                ++litCompared;
+                for (int k = 0; k < 3; ++k) litChanged += with[i + k] != without[i + k];
+            } else {
+                ++shadowCompared;
+                // Only the ambient (sky 0.1 x albedo 0.7) remains, darker than unshadowed (near the cone's edge the
+                // spot adds little, so no ratio is asked for).
+                notAmbient += !(with[i] < without[i]) || std::abs(with[i] - 0.07f) > 1e-3f;
+            }
+        }
+    EXPECT_GT(litCompared, 10000);
+    EXPECT_GT(shadowCompared, 1500);
+    EXPECT_EQ(litChanged, 0) << "lit pixels changed by the spot's shadow";
+    EXPECT_EQ(notAmbient, 0) << "shadowed pixels hold more than the ambient";
+
+    // A glinty metallic plane without ambient: nothing but the spot could light the shadow.
+    rig.scene.materials[0].glinty = true;
+    rig.scene.materials[0].metallic = 1.0f;
+    rig.scene.materials[0].alpha = 0.5f;
+    rig.scene.skyColor = glm::vec3(0.0f);
+    for (const std::string method : {"deliot2023", "zirr2016", "kemppinen2025", "wang2020"}) {
+        RenderSettings glintsOn;
+        glintsOn.method = method;
+        RenderSettings glintsOff = glintsOn;
+        glintsOff.apply("shadow.enabled=0");
+        std::vector<float> a = rig.render(glintsOn, camera), b = rig.render(glintsOff, camera);
+        double inShadow = 0.0, withoutShadows = 0.0;
+        for (int y = 0; y < rig.size; ++y)
+            for (int x = 0; x < rig.size; ++x) {
+                if (classes[size_t(y) * rig.size + size_t(x)] != kShadowed || nearBoundary(classes, rig.size, x, y, 3))
+                    continue;
+                size_t i = (size_t(y) * rig.size + size_t(x)) * 4;
+                inShadow += a[i] + a[i + 1] + a[i + 2];
+                withoutShadows += b[i] + b[i + 1] + b[i + 2];
+            }
+        EXPECT_GT(withoutShadows, 0.0) << method << ": no glints there even without shadows (the test proves nothing)";
+        EXPECT_EQ(inShadow, 0.0) << method << ": glint radiance inside the spot's shadow";
+    }
 }
 
 }  // namespace

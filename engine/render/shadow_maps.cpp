@@ -21,7 +21,13 @@ struct ShadowBlockData {
 static_assert(sizeof(ShadowBlockData) == kMaxShadowViews * 80 + kMaxShadowLights * 16 + 32);
 
 // Kinds of ShadowBlock.lights[].x (shaders/common/shadows.glsl).
-constexpr int kShadowNone = 0, kShadowCascades = 1, kShadowCube = 2;
+constexpr int kShadowNone = 0, kShadowCascades = 1, kShadowCube = 2, kShadowSpot = 3;
+
+bool isLocal(const Light& light) { return light.type == LightType::Point || light.type == LightType::Spot; }
+// Views of a local light's shadow: one for a spot narrow enough, else the six faces of a cube.
+int localViewCount(const Light& light) {
+    return light.type == LightType::Spot && light.outerConeAngle <= kMaxSpotViewHalfAngle ? 1 : 6;
+}
 
 // Guard band of a view, in texels: the PCF taps reach filterRadius + 1 texels (bilinear) from the point.
 float guardTexels(const ShadowSettings& s) { return s.filterRadius + 2.0f; }
@@ -75,7 +81,9 @@ ShadowMaps::ShadowMaps() {
 
 void ShadowMaps::ensureArrays() {
     int sunLayers = std::max(int(suns_.size()) * settings_.cascades, 1);
-    int localLayers = std::max(int(locals_.size()) * 6, 1);
+    int localLayers = 0;
+    for (const LocalState& local : locals_) localLayers += local.viewCount;
+    localLayers = std::max(localLayers, 1);
     int sunSize = settings_.enabled && !suns_.empty() ? settings_.mapSize : 1;
     int localSize = settings_.enabled && !locals_.empty() ? settings_.pointMapSize : 1;
     if (!sunArray_ || sunLayers != sunLayers_ || sunSize != sunSize_) {
@@ -130,13 +138,19 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
     for (size_t i = 0; i < records.size(); ++i) {
         const Light& light = scene.lights[i];
         if (light.type == LightType::Directional && directional < size_t(kMaxShadowedDirectional)) ++directional;
-        if (light.type == LightType::Point && local < size_t(kMaxShadowedLocal)) ++local;
+        if (isLocal(light) && local < size_t(kMaxShadowedLocal)) {
+            if (local >= locals_.size()) locals_.emplace_back();
+            if (locals_[local].viewCount != localViewCount(light)) locals_[local] = LocalState{};
+            locals_[local].viewCount = localViewCount(light);
+            ++local;
+        }
     }
     suns_.resize(directional);
     locals_.resize(local);
     ensureArrays();
 
     directional = local = 0;
+    int localLayer = 0;
     for (size_t i = 0; i < records.size(); ++i) {
         const Light& light = scene.lights[i];
         if (light.type == LightType::Directional && directional < suns_.size()) {
@@ -144,9 +158,11 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
             fitSun(suns_[directional], light.vector, scene, gpuScene, camera, aspect,
                    int(directional) * settings_.cascades);
             ++directional;
-        } else if (light.type == LightType::Point && local < locals_.size()) {
-            records[i] = {kShadowCube, int(views_.size()), 6, 0};
-            fitLocal(locals_[local], light.vector, int(local) * 6);
+        } else if (isLocal(light) && local < locals_.size()) {
+            LocalState& state = locals_[local];
+            records[i] = {state.viewCount == 1 ? kShadowSpot : kShadowCube, int(views_.size()), state.viewCount, 0};
+            fitLocal(state, light, localLayer);
+            localLayer += state.viewCount;
             ++local;
         }
     }
@@ -206,19 +222,26 @@ void ShadowMaps::fitSun(SunState& sun, const glm::vec3& towardLight, const Scene
     }
 }
 
-void ShadowMaps::fitLocal(LocalState& local, const glm::vec3& position, int firstLayer) {
-    const float tanHalf = cubeFaceTanHalf(settings_.pointMapSize, guardTexels(settings_));
-    const bool reuse = local.valid && local.position == position && local.tanHalf == tanHalf;
+void ShadowMaps::fitLocal(LocalState& local, const Light& light, int firstLayer) {
+    const bool spot = local.viewCount == 1;
+    const glm::vec3 position = light.vector;
+    const glm::vec3 direction = spot ? glm::normalize(light.spotDirection) : glm::vec3(0.0f);
+    const float tanHalf = spot ? spotViewTanHalf(light.outerConeAngle, settings_.pointMapSize, guardTexels(settings_))
+                               : cubeFaceTanHalf(settings_.pointMapSize, guardTexels(settings_));
+    const bool reuse =
+        local.valid && local.position == position && local.direction == direction && local.tanHalf == tanHalf;
     local.position = position;
+    local.direction = direction;
     local.tanHalf = tanHalf;
     local.valid = true;
-    for (int face = 0; face < 6; ++face) {
+    for (int face = 0; face < local.viewCount; ++face) {
         ShadowView view;
         view.array = ShadowArray::Local;
         view.layer = firstLayer + face;
         view.perspective = true;
         view.dirty = !reuse;
-        view.viewProjection = perspectiveShadowView(position, cubeFaceDirection(face), tanHalf, kLocalNearPlane);
+        view.viewProjection =
+            perspectiveShadowView(position, spot ? direction : cubeFaceDirection(face), tanHalf, kLocalNearPlane);
         view.texelWorld = perspectiveTexelPerMetre(tanHalf, settings_.pointMapSize);
         views_.push_back(view);
     }

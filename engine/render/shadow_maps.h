@@ -2,7 +2,9 @@
 // (shaders/common/shadows.glsl). Every shadow is a set of views, each one layer of a 2D depth array:
 // - directional lights (the sun): one orthographic view per cascade (render/shadow_cascades.h), in the sun array;
 // - point lights (lanterns): six perspective views, the faces of a cube (render/shadow_projections.h), in the
-//   local-light array, where a spot light will take one view with the same code.
+//   local-light array;
+// - spot lights: one perspective view along the axis fitted to the outer cone, in the same array (a spot wider
+//   than kMaxSpotViewHalfAngle is shadowed like a point light: a single view would spread its texels too thin).
 // prepare() decides each frame which views are still valid and which must be re-rendered (the shadow passes,
 // render/passes/shadow_map_pass.h, render only those): a view is re-rendered when the scene's geometry, the
 // light or the map parameters changed, or, for a cascade, when the camera moved its needed region out of the
@@ -44,6 +46,9 @@ constexpr int kMaxShadowedDirectional = 4;
 constexpr int kMaxShadowedLocal = 8;
 constexpr int kMaxCascades = 4;
 constexpr int kMaxShadowViews = kMaxShadowedDirectional * kMaxCascades + kMaxShadowedLocal * 6;
+// Widest outer cone (half angle, radians) shadowed by one perspective view: at 60 degrees the map's edge texels
+// are 4x the centre's in area (1 / cos^2); wider spots take a cube.
+constexpr float kMaxSpotViewHalfAngle = 1.0471976f;
 constexpr int kMaxShadowLights = 64;
 // Extra square around each cascade's sphere, as a fraction of its radius: the camera may move this far before
 // the cascade is re-rendered.
@@ -102,15 +107,17 @@ private:
         std::vector<CascadeWindow> windows;   // cached squares (rendered)
         bool valid = false;
     };
-    struct LocalState {           // one shadowed point light
+    struct LocalState {           // one shadowed point or spot light
         glm::vec3 position{0.0f};
+        glm::vec3 direction{0.0f};   // spot view: the axis; cube: unused (zero)
         float tanHalf = 0.0f;
+        int viewCount = 6;           // 6: cube faces, 1: one spot view
         bool valid = false;
     };
     void ensureArrays();
     void fitSun(SunState& sun, const glm::vec3& towardLight, const Scene& scene, const GpuScene& gpuScene,
                 const Camera& camera, float aspect, int firstLayer);
-    void fitLocal(LocalState& local, const glm::vec3& position, int firstLayer);
+    void fitLocal(LocalState& local, const Light& light, int firstLayer);
     void upload(const std::vector<glm::ivec4>& lightRecords);
 
     ShadowSettings settings_;

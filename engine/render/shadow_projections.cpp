@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace glimmer {
 
@@ -28,6 +29,13 @@ float cubeFaceTanHalf(int mapSize, float guardTexels) {
     // (2 / mapSize in NDC each) beyond it inside the map.
     float guardNdc = 2.0f * guardTexels / float(std::max(mapSize, 1));
     return 1.0f / std::max(1.0f - guardNdc, 0.5f);
+}
+
+float spotViewTanHalf(float outerConeAngle, int mapSize, float guardTexels) {
+    // The cone's edge sits guardTexels inside the map's edge; the map stays square (the cone is round).
+    float guardNdc = 2.0f * guardTexels / float(std::max(mapSize, 1));
+    float cone = std::tan(std::clamp(outerConeAngle, 0.01f, 1.5f));
+    return cone / std::max(1.0f - guardNdc, 0.5f);
 }
 
 }  // namespace glimmer

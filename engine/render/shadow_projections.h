@@ -1,6 +1,6 @@
 // Perspective shadow views of local lights: the six faces of a point light's cube (render/shadow_maps.h stores
 // them as six layers of a 2D depth array, not a GL cube map, so each face is an ordinary perspective view with
-// its own frustum for culling and the same 2D filtering code as the sun; a spot light will be one such view).
+// its own frustum for culling and the same 2D filtering code as the sun; a spot light is one such view).
 // Depth is reversed-Z with an infinite far plane like the camera's: depth = near / view depth, 1 at the near plane.
 #pragma once
 #include <glm/glm.hpp>
@@ -17,6 +17,9 @@ glm::vec3 cubeFaceDirection(int face);
 // tan(half angle) of a face: a little over 45 degrees, so that a filter `guardTexels` wide around any point whose
 // major axis selects the face still reads texels of that face (no seams between faces).
 float cubeFaceTanHalf(int mapSize, float guardTexels);
+
+// tan(half angle) of a spot light's view: the outer cone with a `guardTexels` band to spare at the map's edge.
+float spotViewTanHalf(float outerConeAngle, int mapSize, float guardTexels);
 
 // World size of one texel at view depth 1 m (multiply by the view depth).
 inline float perspectiveTexelPerMetre(float tanHalf, int mapSize) { return 2.0f * tanHalf / float(mapSize); }

@@ -38,7 +38,7 @@
 #define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
 #define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
 #define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)
-#define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces (and later spot lights)
+#define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces and spot-light views
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

@@ -1,7 +1,7 @@
 // Visibility of a light from a surface point, from the shadow maps of render/shadow_maps.h (fitted on the CPU,
 // rendered by render/passes/shadow_map_pass.cpp). Every shadow is a set of views, each one layer of a 2D depth
 // array (reversed Z: 1 nearest the light): the sun's cascades (orthographic) in s_shadowSun, the six cube faces
-// of a point light (perspective) in s_shadowLocal, where a spot light's single view will go too.
+// of a point light and the single view of a spot light (perspective) in s_shadowLocal.
 // Bias (docs/shadows.md): the receiver moves along its normal by normal_bias texels x sin(normal, light) (Holbert
 // 2011, "normal offset shadows"; it gives a depth margin of normal_bias texels x tan) and towards the light by
 // bias texels; the casters carry a slope-scaled depth offset (glPolygonOffset, shadow.slope_bias).
@@ -14,6 +14,7 @@
 const int SHADOW_NONE = 0;
 const int SHADOW_CASCADES = 1;
 const int SHADOW_CUBE = 2;
+const int SHADOW_SPOT = 3;
 
 layout(std140, binding = BINDING_SHADOWS) uniform ShadowBlock {
     mat4 u_shadowViews[MAX_SHADOW_VIEWS];      // world -> clip of each view
@@ -78,17 +79,22 @@ float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, v
         if (view < 0) return 1.0;   // beyond shadow.distance
         return shadowPcfSun(coord.xy, u_shadowViewInfo[view].y, coord.z, u_shadowMapSizes.x, radius);
     }
-    if (record.x == SHADOW_CUBE) {
-        // The face of the major axis (faces are a little wider than 90 degrees: the filter stays on the face).
+    if (record.x == SHADOW_CUBE || record.x == SHADOW_SPOT) {
+        // A cube: the face of the major axis (faces are a little wider than 90 degrees: the filter stays on the
+        // face). A spot: its one view. Both are perspective views whose clip w is the view depth.
         vec3 d = position - lightVector;
         vec3 a = abs(d);
         int face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : (a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5));
-        view = record.y + face;
-        float depth = max(a.x, max(a.y, a.z));
+        view = record.y + (record.x == SHADOW_CUBE ? face : 0);
+        float depth = max((u_shadowViews[view] * vec4(position, 1.0)).w, 1e-4);
         vec3 p = shadowReceiver(position, normal, towardLight, u_shadowViewInfo[view].x * depth);
         vec4 clip = u_shadowViews[view] * vec4(p, 1.0);
-        vec3 ndc = clip.xyz / clip.w;
-        return shadowPcfLocal(ndc.xy * 0.5 + 0.5, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
+        vec3 ndc = clip.xyz / max(clip.w, 1e-4);   // behind a spot: finite, and outside the map below
+        vec2 uv = ndc.xy * 0.5 + 0.5;
+        float shadow = shadowPcfLocal(uv, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
+        // Outside a spot's view (beyond its outer cone, where it sends no light) nothing is shadowed.
+        bool inView = clip.w > 1e-4 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+        return inView ? shadow : 1.0;
     }
     return 1.0;
 }
