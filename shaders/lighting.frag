@@ -9,6 +9,7 @@
 #include "common/glint_surface.glsl"
 #include "common/ibl.glsl"
 #include "common/clearcoat.glsl"
+#include "common/light_incidence.glsl"
 #ifdef SHADOWS
 #include "common/shadows.glsl"
 #endif
@@ -43,12 +44,6 @@ layout(location = 0) out vec4 o_color;
 // neighbourhood clipping (shaders/image/taa_resolve.frag). Written only where TAA attaches a target.
 layout(location = 3) out vec4 o_glintPart;
 
-vec3 worldPosition(ivec2 pixel, float depth) {
-    vec2 ndc = (vec2(pixel) + 0.5) / vec2(u_viewport.xy) * 2.0 - 1.0;
-    vec4 p = u_inverseViewProjection * vec4(ndc, depth, 1.0);
-    return p.xyz / p.w;
-}
-
 // TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
 // position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
 vec3 tangentPlanePoint(vec2 screen, vec3 anchor, vec3 n) {
@@ -82,33 +77,6 @@ void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
     s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
     s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
     position = q;
-}
-
-// Direction towards the light and the irradiance it delivers at normal incidence (KHR_lights_punctual: point
-// and spot intensity / d^2 times the recommended range window; spot times the cone falloff t^2). A visibility
-// factor (shadows) multiplies the result.
-void lightIncidence(GpuLight light, vec3 position, out vec3 towardLight, out vec3 irradiance) {
-    vec3 radiant = light.colorIntensity.rgb * light.colorIntensity.a;
-    if (light.vectorType.w < 0.5) {
-        towardLight = normalize(light.vectorType.xyz);
-        irradiance = radiant;
-    } else {
-        vec3 d = light.vectorType.xyz - position;
-        float distance2 = max(dot(d, d), 1e-8);
-        towardLight = d * inversesqrt(distance2);
-        irradiance = radiant / distance2;
-        float range = light.spotOffsetRange.y;
-        if (range > 0.0) {
-            float r2 = distance2 / (range * range);
-            float window = clamp(1.0 - r2 * r2, 0.0, 1.0);
-            irradiance *= window * window;
-        }
-        if (light.vectorType.w > 1.5) {
-            float t = clamp(dot(light.spotAxisScale.xyz, -towardLight) * light.spotAxisScale.w + light.spotOffsetRange.x,
-                            0.0, 1.0);
-            irradiance *= t * t;
-        }
-    }
 }
 
 vec3 finiteOrZero(vec3 c) {
@@ -209,6 +177,11 @@ void main() {
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
     vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
     int lightCount = int(u_exposure.y);
+#ifdef SHADOWS
+    vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
+    // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
+    shadowMaskVisibility(pixel, worldPosition(pixel, depth), s.n, g_depth, u_viewport.xy, maskVisibility);
+#endif
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], position, towardLight, irradiance);
@@ -219,7 +192,9 @@ void main() {
         // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
         // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
 #ifdef SHADOWS
-        float visibility = lightVisibility(i, u_lights[i].vectorType.xyz, position, s.n, towardLight);
+        // From the shadow mask (render/passes/shadow_mask_pass.h: the maps are filtered there, at a quarter of the
+        // pixels by default).
+        float visibility = maskedLightVisibility(i, maskVisibility);
 #else
         float visibility = 1.0;   // shadow.enabled=0 (render/passes/lighting_pass.h)
 #endif

@@ -62,6 +62,7 @@ struct ShadowRig {
     std::unique_ptr<GpuScene> gpu;
     std::unique_ptr<Renderer> renderer;
     int size = 256;
+    int analyticLight = 0;   // the light analytic() classifies for
 
     ShadowRig(const Box& occluder, const Light& light, float planeHalfExtent = 6.0f) : box(occluder) {
         scene.name = "shadow-test";
@@ -109,7 +110,7 @@ struct ShadowRig {
     // the light meets the box; pixels that see the box (or miss the plane) are excluded.
     std::vector<int> analytic(const Camera& camera) const {
         std::vector<int> classes(size_t(size) * size, kExcluded);
-        const Light& light = scene.lights[0];
+        const Light& light = scene.lights[size_t(analyticLight)];
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
                 Ray ray = cameraRay(camera, size, size, x + 0.5, y + 0.5);
@@ -238,35 +239,46 @@ TEST(Shadows, GrazingSunOnARestingBoxHasNoAcneAndNoPeterPanning) {
         << "maximal bias still placed the boundary within 2 px: the peter-panning check proves nothing";
 }
 
-TEST(Shadows, LitSideIsUnchangedAndTheShadowHoldsOnlyAmbient) {
-    ShadowRig rig({{-0.5, 1.0, -0.6}, {0.5, 1.6, 0.6}}, sunAt(45.0f, 30.0f));
-    const Camera& camera = rig.scene.cameras[0];
-    std::vector<int> classes = rig.analytic(camera);
-    // Ambient occlusion off in both: it darkens the ambient under the box too, and the test isolates the shadow.
+// Renders with and without shadows (ambient occlusion off in both: it darkens the ambient under the box too, and
+// the tests isolate the shadow) and compares them away from the analytic boundary: lit pixels must be unchanged,
+// shadowed ones hold only the constant ambient (sky 0.1 x albedo 0.7) and be darker than unshadowed, by at least
+// `darkerRatio` (0: any amount; near a spot's cone edge the light adds little).
+struct ShadowedComparison {
+    int litCompared = 0, litChanged = 0, shadowCompared = 0, notAmbient = 0;
+};
+ShadowedComparison compareWithShadowsOff(ShadowRig& rig, const Camera& camera, const std::vector<int>& classes,
+                                         float darkerRatio) {
     RenderSettings on;
     on.apply("ao.enabled=0");
     RenderSettings off = on;
     off.apply("shadow.enabled=0");
     std::vector<float> with = rig.render(on, camera), without = rig.render(off, camera);
-    int litCompared = 0, litChanged = 0, shadowCompared = 0, shadowNotDarker = 0;
+    ShadowedComparison result;
     for (int y = 0; y < rig.size; ++y)
         for (int x = 0; x < rig.size; ++x) {
             int c = classes[size_t(y) * rig.size + size_t(x)];
             if (c == kExcluded || nearBoundary(classes, rig.size, x, y, 3)) continue;
             size_t i = (size_t(y) * rig.size + size_t(x)) * 4;
             if (c == kLit) {
-                ++litCompared;
-                for (int k = 0; k < 3; ++k) litChanged += with[i + k] != without[i + k];
+                ++result.litCompared;
+                for (int k = 0; k < 3; ++k) result.litChanged += with[i + k] != without[i + k];
             } else {
-                ++shadowCompared;
-                // Only the constant ambient remains: sky 0.1 x albedo 0.7.
-                shadowNotDarker += !(with[i] < 0.5f * without[i]) || std::abs(with[i] - 0.07f) > 1e-3f;
+                ++result.shadowCompared;
+                bool darker = darkerRatio > 0.0f ? with[i] < darkerRatio * without[i] : with[i] < without[i];
+                result.notAmbient += !darker || std::abs(with[i] - 0.07f) > 1e-3f;
             }
         }
-    EXPECT_GT(litCompared, 30000);
-    EXPECT_GT(shadowCompared, 1500);
-    EXPECT_EQ(litChanged, 0) << "lit pixels changed by turning shadows on";
-    EXPECT_EQ(shadowNotDarker, 0);
+    return result;
+}
+
+TEST(Shadows, LitSideIsUnchangedAndTheShadowHoldsOnlyAmbient) {
+    ShadowRig rig({{-0.5, 1.0, -0.6}, {0.5, 1.6, 0.6}}, sunAt(45.0f, 30.0f));
+    const Camera& camera = rig.scene.cameras[0];
+    ShadowedComparison r = compareWithShadowsOff(rig, camera, rig.analytic(camera), 0.5f);
+    EXPECT_GT(r.litCompared, 30000);
+    EXPECT_GT(r.shadowCompared, 1500);
+    EXPECT_EQ(r.litChanged, 0) << "lit pixels changed by turning shadows on";
+    EXPECT_EQ(r.notAmbient, 0);
 }
 
 TEST(Shadows, GlintyPlaneHasNoGlintRadianceInShadow) {
@@ -448,31 +460,28 @@ TEST(Shadows, SpotShadowLeavesTheLitSideAndHoldsNoGlints) {
     ShadowRig rig({{0.3, 1.0, -0.4}, {0.9, 1.6, 0.4}}, spotAt({0.0f, 3.0f, 0.0f}, 40.0f));
     const Camera& camera = rig.scene.cameras[0];
     std::vector<int> classes = rig.analytic(camera);
-    RenderSettings on;
-    on.apply("ao.enabled=0");
-    RenderSettings off = on;
-    off.apply("shadow.enabled=0");
-    std::vector<float> with = rig.render(on, camera), without = rig.render(off, camera);
-    int litCompared = 0, litChanged = 0, shadowCompared = 0, notAmbient = 0;
-    for (int y = 0; y < rig.size; ++y)
-        for (int x = 0; x < rig.size; ++x) {
-            int c = classes[size_t(y) * rig.size + size_t(x)];
-            if (c == kExcluded || nearBoundary(classes, rig.size, x, y, 3)) continue;
-            size_t i = (size_t(y) * rig.size + size_t(x)) * 4;
-            if (c == kLit) {
-                ++litCompared;
-                for (int k = 0; k < 3; ++k) litChanged += with[i + k] != without[i + k];
-            } else {
-                ++shadowCompared;
-                // Only the ambient (sky 0.1 x albedo 0.7) remains, darker than unshadowed (near the cone's edge the
-                // spot adds little, so no ratio is asked for).
-                notAmbient += !(with[i] < without[i]) || std::abs(with[i] - 0.07f) > 1e-3f;
-            }
+    // The spot alone (shadow-mask slot 0), then after four black point lights that take slots 0-3, so that its
+    // visibility comes from the mask's second layer.
+    for (int darkLights : {0, 4}) {
+        SCOPED_TRACE(darkLights);
+        rig.scene.lights.resize(1);
+        for (int k = 0; k < darkLights; ++k) {
+            Light dark;
+            dark.type = LightType::Point;
+            dark.vector = {float(k) - 1.5f, 2.0f, -2.0f};
+            dark.intensity = 0.0f;
+            rig.scene.lights.insert(rig.scene.lights.begin(), dark);
         }
-    EXPECT_GT(litCompared, 10000);
-    EXPECT_GT(shadowCompared, 1500);
-    EXPECT_EQ(litChanged, 0) << "lit pixels changed by the spot's shadow";
-    EXPECT_EQ(notAmbient, 0) << "shadowed pixels hold more than the ambient";
+        ShadowedComparison r = compareWithShadowsOff(rig, camera, classes, 0.0f);
+        rig.render(RenderSettings{}, camera);   // shadows on again, to read the mask's layer count
+        EXPECT_EQ(rig.renderer->shadowMaps().maskLayers(), darkLights == 0 ? 1 : 2);
+        EXPECT_GT(r.litCompared, 10000);
+        EXPECT_GT(r.shadowCompared, 1500);
+        EXPECT_EQ(r.litChanged, 0) << "lit pixels changed by the spot's shadow";
+        EXPECT_EQ(r.notAmbient, 0) << "shadowed pixels hold more than the ambient";
+    }
+    rig.scene.lights.resize(1);
+    rig.scene.lights[0] = spotAt({0.0f, 3.0f, 0.0f}, 40.0f);
 
     // A glinty metallic plane without ambient: nothing but the spot could light the shadow.
     rig.scene.materials[0].glinty = true;
@@ -497,6 +506,44 @@ TEST(Shadows, SpotShadowLeavesTheLitSideAndHoldsNoGlints) {
         EXPECT_GT(withoutShadows, 0.0) << method << ": no glints there even without shadows (the test proves nothing)";
         EXPECT_EQ(inShadow, 0.0) << method << ": glint radiance inside the spot's shadow";
     }
+}
+
+TEST(Shadows, HalfResolutionMaskKeepsTheBoundaryAndItsSamples) {
+    // shadow.half_res=1 filters the maps at every second pixel in x and y and interpolates the rest by depth and
+    // plane: the boundary stays within 2 px of the analytic one, the sample pixels are the full-resolution mask's,
+    // and pixels away from the boundary are exactly lit or shadowed.
+    ShadowRig rig({{-0.5, 1.0, -0.6}, {0.5, 1.6, 0.6}}, sunAt(45.0f, 30.0f));
+    const Camera& camera = rig.scene.cameras[0];
+    std::vector<int> classes = rig.analytic(camera);
+    RenderSettings half;
+    half.apply("shadow.half_res=1");
+    std::vector<float> full = rig.visibility(RenderSettings{}, camera), halved = rig.visibility(half, camera);
+    EXPECT_EQ(rig.renderer->shadowMaps().maskSize(), glm::ivec2(rig.size / 2));
+    BoundaryCheck check = checkBoundary(classes, halved, rig.size);
+    EXPECT_GT(check.shadowedPixels, 2000);
+    EXPECT_EQ(check.misplaced, 0) << "first misplaced pixel at (" << check.firstX << ", " << check.firstY << ")";
+    int samples = 0, samplesDiffer = 0, interior = 0, interiorNotExact = 0, interpolatedDiffer = 0;
+    for (int y = 0; y < rig.size; ++y)
+        for (int x = 0; x < rig.size; ++x) {
+            int c = classes[size_t(y) * rig.size + size_t(x)];
+            if (c == kExcluded) continue;
+            float a = ShadowRig::red(full, rig.size, x, y), b = ShadowRig::red(halved, rig.size, x, y);
+            if (x % 2 == 0 && y % 2 == 0) {
+                ++samples;
+                samplesDiffer += std::abs(a - b) > 1e-6f;
+            } else {
+                interpolatedDiffer += a != b;
+            }
+            if (!nearBoundary(classes, rig.size, x, y, 3)) {
+                ++interior;
+                interiorNotExact += b != (c == kLit ? 1.0f : 0.0f);
+            }
+        }
+    EXPECT_GT(samples, 10000);
+    EXPECT_EQ(samplesDiffer, 0) << "sample pixels differ from the full-resolution mask";
+    EXPECT_GT(interpolatedDiffer, 0) << "no interpolated pixel differs: the half-resolution mask was not used";
+    EXPECT_GT(interior, 40000);
+    EXPECT_EQ(interiorNotExact, 0);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "render/passes/exposure_pass.h"
 #include "render/passes/taa_pass.h"
 #include "render/passes/shadow_map_pass.h"
+#include "render/passes/shadow_mask_pass.h"
 #include "render/passes/tonemap_pass.h"
 #include "render/image/halton_jitter.h"
 #include "render/passes/emissive_pass.h"
@@ -62,6 +63,7 @@ void Renderer::buildPasses() {
     auto gbuffer = std::make_unique<GBufferPass>(shaderRoot_);
     auto gtao = std::make_unique<GtaoPass>(shaderRoot_, *ambientOcclusion_);
     auto aoResolve = std::make_unique<AoResolvePass>(shaderRoot_, *ambientOcclusion_);
+    auto shadowMask = std::make_unique<ShadowMaskPass>(shaderRoot_);
     auto lighting = std::make_unique<LightingPass>(shaderRoot_, settings_.method, settings_.ibl,
                                                    settings_.common_("shadow.enabled") > 0.5f);
     auto methodPasses = methodPassesOf(findGlintMethod(settings_.method), shaderRoot_);
@@ -82,6 +84,7 @@ void Renderer::buildPasses() {
     gbufferPass_ = std::move(gbuffer);
     gtaoPass_ = std::move(gtao);
     aoResolvePass_ = std::move(aoResolve);
+    shadowMaskPass_ = std::move(shadowMask);
     lightingPass_ = std::move(lighting);
     methodPasses_ = std::move(methodPasses);
     tonemapPass_ = std::move(tonemap);   // before the passes it refers to are replaced
@@ -112,8 +115,8 @@ void Renderer::reloadPrograms() {
 
 std::vector<Pass*> Renderer::frame() const {
     std::vector<Pass*> passes = {sunShadowPass_.get(),  pointShadowPass_.get(),    gbufferPass_.get(),
-                                 gtaoPass_.get(),       aoResolvePass_.get(),      forwardRestorePass_.get(),
-                                 lightingPass_.get()};
+                                 gtaoPass_.get(),       aoResolvePass_.get(),      shadowMaskPass_.get(),
+                                 forwardRestorePass_.get(), lightingPass_.get()};
     for (const auto& pass : methodPasses_) passes.push_back(pass.get());
     passes.insert(passes.end(), {forwardSavePass_.get(), emissivePass_.get(), transparentPass_.get(),
                                  taaPass_.get(), exposurePass_.get(), bloomPass_.get(), tonemapPass_.get()});
@@ -333,6 +336,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     runPass(*aoResolvePass_, frame);
     updateMethodData(measurePasses);
     runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
+    runPass(*shadowMaskPass_, frame);       // the first four lights' visibility (shadow.half_res: every 2nd pixel)
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
     runPass(*forwardSavePass_, frame);

@@ -28,6 +28,7 @@ namespace glimmer {
 class GBufferPass;
 class GtaoPass;
 class AoResolvePass;
+class ShadowMaskPass;
 class AmbientOcclusion;
 class LightingPass;
 class TaaPass;
@@ -139,6 +140,7 @@ private:
     std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes
     std::unique_ptr<GtaoPass> gtaoPass_;
     std::unique_ptr<AoResolvePass> aoResolvePass_;
+    std::unique_ptr<ShadowMaskPass> shadowMaskPass_;
     std::unique_ptr<LightingPass> lightingPass_;
     std::vector<std::unique_ptr<Pass>> methodPasses_;
     std::unique_ptr<TaaPass> taaPass_;

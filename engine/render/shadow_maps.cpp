@@ -17,8 +17,10 @@ struct ShadowBlockData {
     glm::ivec4 lights[kMaxShadowLights];    // kind, first view, view count, unused
     glm::vec4 filter;                       // filter radius, normal bias, depth bias (texels), enabled
     glm::vec4 mapSizes;                     // 1 / sun size, 1 / local size, sun size, local size
+    glm::ivec4 mask;                        // G-buffer pixels per mask texel, slots, mask layers
+    glm::ivec4 slotLights[kMaxShadowSlots / 4];   // light index of each slot
 };
-static_assert(sizeof(ShadowBlockData) == kMaxShadowViews * 80 + kMaxShadowLights * 16 + 32);
+static_assert(sizeof(ShadowBlockData) == kMaxShadowViews * 80 + kMaxShadowLights * 16 + 48 + kMaxShadowSlots * 4);
 
 // Kinds of ShadowBlock.lights[].x (shaders/common/shadows.glsl).
 constexpr int kShadowNone = 0, kShadowCascades = 1, kShadowCube = 2, kShadowSpot = 3;
@@ -67,6 +69,7 @@ ShadowSettings shadowSettingsOf(const RenderSettings& settings) {
     s.distance = settings.common_("shadow.distance");
     s.pointMapSize = int(settings.common_("shadow.point_map_size"));
     s.cache = settings.common_("shadow.cache") > 0.5f;
+    s.halfResMask = settings.common_("shadow.half_res") > 0.5f;
     return s;
 }
 
@@ -103,7 +106,11 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
     settings_ = shadowSettingsOf(renderSettings);
     stats_ = {};
     views_.clear();
-    std::vector<glm::ivec4> records(std::min(scene.lights.size(), size_t(kMaxShadowLights)), glm::ivec4(kShadowNone));
+    // Per light: kind, first view, view count, mask slot (-1: unshadowed).
+    std::vector<glm::ivec4> records(std::min(scene.lights.size(), size_t(kMaxShadowLights)),
+                                    glm::ivec4(kShadowNone, 0, 0, -1));
+    slots_ = 0;
+    slotLights_.clear();
     if (!settings_.enabled) {
         suns_.clear();
         locals_.clear();
@@ -154,13 +161,16 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
     for (size_t i = 0; i < records.size(); ++i) {
         const Light& light = scene.lights[i];
         if (light.type == LightType::Directional && directional < suns_.size()) {
-            records[i] = {kShadowCascades, int(views_.size()), settings_.cascades, 0};
+            records[i] = {kShadowCascades, int(views_.size()), settings_.cascades, slots_++};
+            slotLights_.push_back(int(i));
             fitSun(suns_[directional], light.vector, scene, gpuScene, camera, aspect,
                    int(directional) * settings_.cascades);
             ++directional;
         } else if (isLocal(light) && local < locals_.size()) {
             LocalState& state = locals_[local];
-            records[i] = {state.viewCount == 1 ? kShadowSpot : kShadowCube, int(views_.size()), state.viewCount, 0};
+            records[i] = {state.viewCount == 1 ? kShadowSpot : kShadowCube, int(views_.size()), state.viewCount,
+                          slots_++};
+            slotLights_.push_back(int(i));
             fitLocal(state, light, localLayer);
             localLayer += state.viewCount;
             ++local;
@@ -258,6 +268,8 @@ void ShadowMaps::upload(const std::vector<glm::ivec4>& lightRecords) {
     for (size_t i = 0; i < lightRecords.size(); ++i) data.lights[i] = lightRecords[i];
     data.filter = {settings_.filterRadius, settings_.normalBias, settings_.depthBias, settings_.enabled ? 1.0f : 0.0f};
     data.mapSizes = {1.0f / float(sunSize_), 1.0f / float(localSize_), float(sunSize_), float(localSize_)};
+    data.mask = {maskStep(), slots_, maskLayers(), 0};
+    for (int slot = 0; slot < slots_; ++slot) data.slotLights[slot / 4][slot % 4] = slotLights_[size_t(slot)];
     glNamedBufferSubData(block_.id(), 0, sizeof(data), &data);
 }
 
@@ -265,6 +277,31 @@ void ShadowMaps::bind() const {
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_SHADOWS, block_.id());
     glBindTextureUnit(UNIT_SHADOW_SUN, sunArray_.id());
     glBindTextureUnit(UNIT_SHADOW_LOCAL, localArray_.id());
+    glBindTextureUnit(UNIT_SHADOW_MASK, mask_.id());
+}
+
+GLuint ShadowMaps::maskFramebuffer(int width, int height, int layer) {
+    const int step = maskStep();
+    const glm::ivec2 size((std::max(width, 1) + step - 1) / step, (std::max(height, 1) + step - 1) / step);
+    const int layers = std::max(maskLayers(), 1);
+    if (!mask_ || size != maskSize_ || layers != maskTextureLayers_) {
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+        glTextureStorage3D(id, 1, GL_RGBA8, size.x, size.y, layers);   // visibility in [0, 1]; 0 and 1 exact
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        mask_ = gl::Texture(id);
+        if (!maskFramebuffer_) {
+            GLuint fb = 0;
+            glCreateFramebuffers(1, &fb);
+            maskFramebuffer_ = gl::Framebuffer(fb);
+        }
+        maskSize_ = size;
+        maskTextureLayers_ = layers;
+    }
+    glNamedFramebufferTextureLayer(maskFramebuffer_.id(), GL_COLOR_ATTACHMENT0, mask_.id(), 0,
+                                   std::clamp(layer, 0, layers - 1));
+    return maskFramebuffer_.id();
 }
 
 GLuint ShadowMaps::framebufferFor(const ShadowView& view) {

@@ -38,6 +38,7 @@ struct ShadowSettings {
     float distance = 40.0f;      // view depth covered by the cascades, metres
     int pointMapSize = 512;      // point-light cube faces, texels per side
     bool cache = true;           // false: every view is re-rendered every frame (measurements)
+    bool halfResMask = false;    // shadow mask at every second pixel (render/passes/shadow_mask_pass.h)
 };
 ShadowSettings shadowSettingsOf(const RenderSettings& settings);
 
@@ -50,6 +51,9 @@ constexpr int kMaxShadowViews = kMaxShadowedDirectional * kMaxCascades + kMaxSha
 // are 4x the centre's in area (1 / cos^2); wider spots take a cube.
 constexpr float kMaxSpotViewHalfAngle = 1.0471976f;
 constexpr int kMaxShadowLights = 64;
+// Shadowed lights: each has a slot in the shadow mask (RGBA8 array, four slots per layer).
+constexpr int kMaxShadowSlots = kMaxShadowedDirectional + kMaxShadowedLocal;
+static_assert(kMaxShadowSlots % 4 == 0);
 // Extra square around each cascade's sphere, as a fraction of its radius: the camera may move this far before
 // the cascade is re-rendered.
 constexpr float kCascadeMargin = 0.25f;
@@ -76,8 +80,16 @@ public:
     // block. With shadow.enabled = 0 no view exists and every light's visibility is 1.
     void prepare(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, float aspect,
                  const RenderSettings& settings);
-    // The shadow block and both depth arrays, for the lighting pass (units and binding in common/bindings.glsl).
+    // The shadow block, both depth arrays and the shadow mask, for the shadow-mask and lighting passes (units and
+    // binding in common/bindings.glsl).
     void bind() const;
+    // The shadow mask (render/passes/shadow_mask_pass.h) for a width x height frame: an RGBA8 array of maskSize()
+    // texels and maskLayers() layers holding every shadowed light's visibility (one channel per slot) at every
+    // maskStep()-th pixel; reallocated when the size or the layer count changes. The framebuffer of `layer`.
+    GLuint maskFramebuffer(int width, int height, int layer);
+    int maskStep() const { return settings_.halfResMask ? 2 : 1; }
+    int maskLayers() const { return (slots_ + 3) / 4; }
+    glm::ivec2 maskSize() const { return maskSize_; }
     // Forgets every cached map (the next prepare() marks every view dirty): after the depth program was rebuilt.
     void invalidate() { contentKey_ = 0; }
 
@@ -128,6 +140,12 @@ private:
     gl::Texture sunArray_, localArray_;
     int sunLayers_ = 0, localLayers_ = 0, sunSize_ = 0, localSize_ = 0;
     gl::Framebuffer framebuffer_;
+    gl::Texture mask_;
+    gl::Framebuffer maskFramebuffer_;
+    glm::ivec2 maskSize_{0, 0};
+    int maskTextureLayers_ = 0;
+    int slots_ = 0;                          // shadowed lights this frame
+    std::vector<int> slotLights_;            // light index of each slot
     gl::Buffer block_;
     Stats stats_;
 };

@@ -24,6 +24,13 @@ struct GpuLight {
 };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight u_lights[]; };
 
+// World position of G-buffer `pixel` (its centre) at reversed-Z `depth`.
+vec3 worldPosition(ivec2 pixel, float depth) {
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 p = u_inverseViewProjection * vec4(ndc, depth, 1.0);
+    return p.xyz / p.w;
+}
+
 // Materials (std430), indexed by the material id stored in the G-buffer.
 struct GpuMaterial {
     vec4 baseColor;

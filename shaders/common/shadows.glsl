@@ -11,6 +11,7 @@
 
 #define MAX_SHADOW_VIEWS 64     // render/shadow_maps.h kMaxShadowViews
 #define MAX_SHADOW_LIGHTS 64    // kMaxShadowLights
+#define MAX_SHADOW_SLOTS 12     // kMaxShadowSlots: shadowed lights, 4 per layer of the shadow mask
 const int SHADOW_NONE = 0;
 const int SHADOW_CASCADES = 1;
 const int SHADOW_CUBE = 2;
@@ -19,12 +20,15 @@ const int SHADOW_SPOT = 3;
 layout(std140, binding = BINDING_SHADOWS) uniform ShadowBlock {
     mat4 u_shadowViews[MAX_SHADOW_VIEWS];      // world -> clip of each view
     vec4 u_shadowViewInfo[MAX_SHADOW_VIEWS];   // x texel size (m; perspective: per m of depth), y layer, z perspective, w array
-    ivec4 u_shadowLights[MAX_SHADOW_LIGHTS];   // per light: x kind, y first view, z view count
+    ivec4 u_shadowLights[MAX_SHADOW_LIGHTS];   // per light: x kind, y first view, z view count, w mask slot (-1: none)
     vec4 u_shadowFilter;                       // x PCF radius, y normal bias, z depth bias (texels), w 1 when on
     vec4 u_shadowMapSizes;                     // x 1 / sun size, y 1 / local size, z sun size, w local size
+    ivec4 u_shadowMask;                        // x G-buffer pixels per mask texel (1, 2), y slots, z mask layers
+    ivec4 u_shadowSlotLights[MAX_SHADOW_SLOTS / 4];   // the light of each slot (slot = 4 x layer + channel)
 };
 layout(binding = UNIT_SHADOW_SUN) uniform sampler2DArrayShadow s_shadowSun;
 layout(binding = UNIT_SHADOW_LOCAL) uniform sampler2DArrayShadow s_shadowLocal;
+layout(binding = UNIT_SHADOW_MASK) uniform sampler2DArray s_shadowMask;
 
 // Tap offsets of the PCF kernel in texels for `radius`; the reach is radius + 1 texel (the bilinear tent).
 vec2 shadowTapOffset(int i, int j, float radius) { return (vec2(i, j) - 1.5) * (radius * (2.0 / 3.0)); }
@@ -97,4 +101,56 @@ float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, v
         return inView ? shadow : 1.0;
     }
     return 1.0;
+}
+
+// The G-buffer pixel that mask texel `texel` was computed at (shaders/shadow_mask.frag).
+ivec2 shadowMaskPixel(ivec2 texel, ivec2 viewport) { return min(texel * u_shadowMask.x, viewport - 1); }
+
+// The visibility of every shadowed light at G-buffer `pixel` (world `position`, unit `normal`, on a surface) from
+// the shadow mask, per layer (slot = 4 x layer + channel; layers beyond u_shadowMask.z are 1): the 2 x 2 mask texels
+// around the pixel, each with its bilinear weight divided by the square of its sample point's distance to this
+// pixel's tangent plane (relative to the distance to the eye, + 1e-4), so that a pixel takes its visibility from
+// samples on its own surface and not across a silhouette or a crease. A pixel that was a sample point gets its
+// sample unchanged (the other weights are 0). `depths` is the G-buffer depth; needs common/frame.glsl.
+void shadowMaskVisibility(ivec2 pixel, vec3 position, vec3 normal, sampler2D depths, ivec2 viewport,
+                          out vec4 visibility[MAX_SHADOW_SLOTS / 4]) {
+    int step = u_shadowMask.x;
+    if (step == 1) {   // a full-resolution mask: this pixel's own texel (the branch is uniform)
+        for (int layer = 0; layer < MAX_SHADOW_SLOTS / 4; ++layer)
+            visibility[layer] = layer < u_shadowMask.z ? texelFetch(s_shadowMask, ivec3(pixel, layer), 0) : vec4(1.0);
+        return;
+    }
+    ivec2 base = pixel / step;
+    vec2 f = vec2(pixel - base * step) / float(step);
+    ivec2 last = textureSize(s_shadowMask, 0).xy - 1;
+    float toEye = 1.0 / max(length(position - u_cameraPosition.xyz), 1e-6);
+    ivec2 texels[4];
+    float weights[4];
+    float total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 corner = ivec2(k & 1, k >> 1);
+        float bilinear = (corner.x == 0 ? 1.0 - f.x : f.x) * (corner.y == 0 ? 1.0 - f.y : f.y);
+        texels[k] = min(base + corner, last);
+        ivec2 samplePixel = shadowMaskPixel(texels[k], viewport);
+        float sampleDepth = texelFetch(depths, samplePixel, 0).r;
+        // A sky sample (depth 0) is taken as very far from the plane.
+        float offPlane = sampleDepth > 0.0 ? abs(dot(worldPosition(samplePixel, sampleDepth) - position, normal)) * toEye
+                                           : 1.0;
+        float d = offPlane + 1e-4;
+        weights[k] = bilinear / (d * d);
+        total += weights[k];
+    }
+    for (int layer = 0; layer < MAX_SHADOW_SLOTS / 4; ++layer) {
+        visibility[layer] = vec4(1.0);
+        if (layer >= u_shadowMask.z) continue;
+        vec4 sum = vec4(0.0);
+        for (int k = 0; k < 4; ++k) sum += weights[k] * texelFetch(s_shadowMask, ivec3(texels[k], layer), 0);
+        visibility[layer] = sum / total;
+    }
+}
+
+// Light `index`'s visibility from shadowMaskVisibility's result: 1 for lights without a shadow map.
+float maskedLightVisibility(int index, vec4 visibility[MAX_SHADOW_SLOTS / 4]) {
+    int slot = index < MAX_SHADOW_LIGHTS ? u_shadowLights[index].w : -1;
+    return slot < 0 ? 1.0 : visibility[slot >> 2][slot & 3];
 }
