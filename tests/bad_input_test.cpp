@@ -139,7 +139,8 @@ TEST(RenderCommand, WritesPngAndExrAndPrintsStats) {
         if (name.find('.') == std::string::npos) framePasses.push_back(name);
     }
     EXPECT_EQ(framePasses,
-              (std::vector<std::string>{"shadow_sun", "gbuffer", "gtao", "ao_resolve", "lighting", "tonemap"}))
+              (std::vector<std::string>{"shadow_sun", "gbuffer", "gtao", "ao_resolve", "shadow_mask", "lighting",
+                                        "tonemap"}))
         << stats["passes"].dump();
     EXPECT_GT(stats["counts"]["triangles"].get<int>(), 0);
     // EXR: linear float radiance, not tone-mapped (the highlight exceeds 1).
