@@ -123,7 +123,8 @@ void main() {
     s.b = duvdyMaterial.w * cross(s.n, s.t);
     bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
 
-    vec3 position = worldPosition(pixel, depth);
+    const vec3 gbufferPosition = worldPosition(pixel, depth);
+    vec3 position = gbufferPosition;
     // TAA jitters the projection by u_jitter.xy pixels. Glint methods filter their NDF over the pixel footprint
     // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
     // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
@@ -180,7 +181,7 @@ void main() {
 #ifdef SHADOWS
     vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
     // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
-    shadowMaskVisibility(pixel, worldPosition(pixel, depth), s.n, g_depth, u_viewport.xy, maskVisibility);
+    shadowMaskVisibility(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, maskVisibility);
 #endif
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;

@@ -336,7 +336,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     runPass(*aoResolvePass_, frame);
     updateMethodData(measurePasses);
     runPass(*forwardRestorePass_, frame);   // accumulating IBL modes: the opaque mean without last sample's composite
-    runPass(*shadowMaskPass_, frame);       // the first four lights' visibility (shadow.half_res: every 2nd pixel)
+    runPass(*shadowMaskPass_, frame);       // every shadowed light's visibility (shadow.half_res: every 2nd pixel)
     runPass(*lightingPass_, frame);
     for (const auto& pass : methodPasses_) runPass(*pass, frame);   // e.g. Wang et al. 2020 Sec. 4.4 post pass
     runPass(*forwardSavePass_, frame);

@@ -102,7 +102,7 @@ const std::vector<CommonParam>& commonParams() {
         {{"shadow.point_map_size", 512.0f, 64.0f, 2048.0f,
           "texels per side of each cube face of a point light and of a spot light's view", {}, true}},
         {{"shadow.half_res", 0.0f, 0.0f, 1.0f,
-          "evaluate the first four lights' shadows at every second pixel and interpolate by depth (0: every pixel)"}},
+          "filter the shadow maps at every second pixel, interpolated by depth and plane (0: every pixel)"}},
         {{"shadow.cache", 1.0f, 0.0f, 1.0f,
           "reuse shadow maps while geometry, light and the needed region are unchanged (0: render every frame)", {},
           true}},

@@ -39,7 +39,7 @@
 #define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
 #define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)
 #define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces and spot-light views
-#define UNIT_SHADOW_MASK 31          // sampler2D: visibility of the first four lights (render/passes/shadow_mask_pass.h)
+#define UNIT_SHADOW_MASK 31          // sampler2DArray: shadowed lights' visibility, 4 a layer (passes/shadow_mask_pass.h)
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

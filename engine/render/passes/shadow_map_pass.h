@@ -1,7 +1,7 @@
 // Shadow-map pass: renders the depth of the views ShadowMaps::prepare marked dirty (render/shadow_maps.h), one
 // layer each, culling the scene's chunks against the view's own frustum. Two instances run before the G-buffer:
-// `shadow_sun` (the cascades of directional lights) and `shadow_point` (the cube faces of point lights and the views of spot lights). On a
-// frame where nothing moved no view is dirty and the pass draws nothing.
+// `shadow_sun` (the cascades of directional lights) and `shadow_point` (the cube faces of point lights and the
+// views of spot lights). On a frame where nothing moved no view is dirty and the pass draws nothing.
 // State: depth test GREATER and writes (reversed Z, cleared to 0), no colour target, no blending, back faces of
 // single-sided materials culled (GpuScene), slope-scaled polygon offset away from the light (shadow.slope_bias).
 #pragma once

@@ -1,8 +1,9 @@
 // Shadow-mask pass (shaders/shadow_mask.frag): the visibility of every shadowed light (common/shadows.glsl: view
 // selection, bias, PCF) at every ShadowMaps::maskStep()-th G-buffer pixel, into ShadowMaps' RGBA8 mask array, one
-// channel per light, one draw per four lights. The lighting pass reads it back with a depth-aware 2 x 2
-// interpolation instead of filtering every light's map at every pixel: at half resolution (shadow.half_res, the
-// default) the shadow lookups run at a quarter of the pixels (docs/shadows.md#cost).
+// channel per light, one draw per four lights. The lighting pass reads it back with a plane-aware 2 x 2
+// interpolation (at half resolution) or one texel per layer, instead of filtering every light's map inside its light
+// loop; at half resolution (shadow.half_res, the window's default on software renderers) the lookups run at a
+// quarter of the pixels (docs/shadows.md#cost).
 // State: no depth test, no blending, viewport = the mask's size.
 #pragma once
 #include <filesystem>
