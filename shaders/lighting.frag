@@ -10,6 +10,7 @@
 #include "common/ibl.glsl"
 #include "common/clearcoat.glsl"
 #include "common/light_incidence.glsl"
+#include "common/plane_aware_upsample.glsl"
 #ifdef SHADOWS
 #include "common/shadows.glsl"
 #endif
@@ -157,7 +158,32 @@ void main() {
     // Environment lighting by the selected IBL mode (shaders/ibl/README.md), or the constant ambient when the
     // environment is off (--env none).
     // Ambient occlusion darkens this term only, never the lights (docs/ambient_occlusion.md).
-    vec4 occlusion = texture(u_ambientOcclusion, (vec2(pixel) + 0.5) / vec2(u_viewport.xy));
+    // At ao.half_res the factor is interpolated from every second pixel (common/plane_aware_upsample.glsl); the
+    // taps are shared with the shadow mask when both run at half resolution.
+    vec4 occlusion;
+    ivec2 aoSize = textureSize(u_ambientOcclusion, 0);
+    int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;
+    UpsampleTaps aoTaps;
+#ifdef SHADOWS
+    UpsampleTaps maskTaps;
+    if (u_shadowMask.x != 1)
+        maskTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, u_shadowMask.x,
+                                  shadowMaskLastTexel());
+#endif
+    if (aoSize == ivec2(1)) {
+        occlusion = texelFetch(u_ambientOcclusion, ivec2(0), 0);   // white: AO off
+    } else if (aoStep == 1) {
+        occlusion = texelFetch(u_ambientOcclusion, pixel, 0);
+    } else {
+#ifdef SHADOWS
+        if (u_shadowMask.x == aoStep) aoTaps = maskTaps;
+        else
+#endif
+        aoTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
+        occlusion = vec4(0.0);
+        for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
+        occlusion /= aoTaps.total;
+    }
     vec3 radiance = occlusion.rgb * (envEnabled()
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
@@ -181,7 +207,7 @@ void main() {
 #ifdef SHADOWS
     vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
     // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
-    shadowMaskVisibility(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, maskVisibility);
+    shadowMaskVisibility(pixel, maskTaps, maskVisibility);
 #endif
     for (int i = 0; i < lightCount; ++i) {
         vec3 towardLight, irradiance;

@@ -86,6 +86,8 @@ const std::vector<CommonParam>& commonParams() {
         {{"ao.steps", 4.0f, 1.0f, 32.0f, "GTAO horizon-search steps per side of a slice", {}, true}},
         {{"ao.falloff", 0.8f, 0.0f, 0.99f, "fraction of the radius after which occluders fade out"}},
         {{"ao.denoise", 1.0f, 0.0f, 1.0f, "4x4 depth-aware denoise of the GTAO term (0 or 1)", {}, true}},
+        {{"ao.half_res", 0.0f, 0.0f, 1.0f,
+          "GTAO and its resolve at every second pixel, interpolated by depth and plane (0: every pixel)"}},
         {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
         {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
         {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},

@@ -20,12 +20,16 @@
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/constants.glsl"
+#include "common/plane_aware_upsample.glsl"
 const float HALF_PI = 1.57079632679489661923;
 
 layout(binding = UNIT_AO_DEPTH) uniform sampler2D g_depth;
 layout(binding = UNIT_AO_NORMAL) uniform sampler2D g_normalAlpha;
 layout(location = 0) uniform mat4 u_inverseProjection;
 layout(location = 1) uniform vec4 u_gtao;   // x radius (m), y slices, z steps per side, w falloff start (fraction)
+// G-buffer pixels per target texel: 1, or 2 at ao.half_res (the texel is computed at its sample pixel,
+// common/plane_aware_upsample.glsl, and the lighting pass interpolates the resolved factor)
+layout(location = 2) uniform int u_step;
 
 layout(location = 0) out float o_visibility;
 
@@ -42,7 +46,8 @@ float bayer4(ivec2 p) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel = reducedSamplePixel(texel, u_step, u_viewport.xy);
     float depth = texelFetch(g_depth, pixel, 0).r;
     if (depth <= 0.0) { o_visibility = 1.0; return; }   // sky
     vec3 P = viewPosition(vec2(pixel) + 0.5, depth);
@@ -58,7 +63,8 @@ void main() {
     if (radiusPixels < 1.0) { o_visibility = 1.0; return; }
     radiusPixels = min(radiusPixels, 0.5 * float(u_viewport.y));   // bounds the cost (and the cache misses) up close
 
-    float sliceOffset = bayer4(pixel), stepOffset = bayer4(pixel.yx);
+    // Interleaved per target texel, so that the resolve's 4 x 4 texels hold each rotation once at either step.
+    float sliceOffset = bayer4(texel), stepOffset = bayer4(texel.yx);
     float visible = 0.0, unoccluded = 0.0;
     for (int s = 0; s < slices; ++s) {
         float phi = PI * (float(s) + sliceOffset) / float(slices);

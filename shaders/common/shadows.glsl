@@ -8,6 +8,7 @@
 // Filter: 4 x 4 hardware bilinear compares spread evenly over +-radius texels (percentage-closer filtering,
 // Reeves et al. 1987); at radius 1.5 the taps are one texel apart and their tents overlap into one smooth kernel.
 #include "common/bindings.glsl"
+#include "common/plane_aware_upsample.glsl"
 
 #define MAX_SHADOW_VIEWS 64     // render/shadow_maps.h kMaxShadowViews
 #define MAX_SHADOW_LIGHTS 64    // kMaxShadowLights
@@ -104,50 +105,28 @@ float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, v
 }
 
 // The G-buffer pixel that mask texel `texel` was computed at (shaders/shadow_mask.frag).
-ivec2 shadowMaskPixel(ivec2 texel, ivec2 viewport) { return min(texel * u_shadowMask.x, viewport - 1); }
+ivec2 shadowMaskPixel(ivec2 texel, ivec2 viewport) { return reducedSamplePixel(texel, u_shadowMask.x, viewport); }
 
-// The visibility of every shadowed light at G-buffer `pixel` (world `position`, unit `normal`, on a surface) from
-// the shadow mask, per layer (slot = 4 x layer + channel; layers beyond u_shadowMask.z are 1): the 2 x 2 mask texels
-// around the pixel, each with its bilinear weight divided by the square of its sample point's distance to this
-// pixel's tangent plane (relative to the distance to the eye, + 1e-4), so that a pixel takes its visibility from
-// samples on its own surface and not across a silhouette or a crease. A pixel that was a sample point gets its
-// sample unchanged (the other weights are 0). `depths` is the G-buffer depth; needs common/frame.glsl.
-void shadowMaskVisibility(ivec2 pixel, vec3 position, vec3 normal, sampler2D depths, ivec2 viewport,
-                          out vec4 visibility[MAX_SHADOW_SLOTS / 4]) {
-    int step = u_shadowMask.x;
-    if (step == 1) {   // a full-resolution mask: this pixel's own texel (the branch is uniform)
+// The visibility of every shadowed light at G-buffer `pixel` from the shadow mask, per layer (slot = 4 x layer +
+// channel; layers beyond u_shadowMask.z are 1). A full-resolution mask is read at the pixel; a reduced one is
+// interpolated with `taps` (common/plane_aware_upsample.glsl: planeAwareTaps at u_shadowMask.x, unused at 1).
+void shadowMaskVisibility(ivec2 pixel, UpsampleTaps taps, out vec4 visibility[MAX_SHADOW_SLOTS / 4]) {
+    if (u_shadowMask.x == 1) {   // a full-resolution mask: this pixel's own texel (the branch is uniform)
         for (int layer = 0; layer < MAX_SHADOW_SLOTS / 4; ++layer)
             visibility[layer] = layer < u_shadowMask.z ? texelFetch(s_shadowMask, ivec3(pixel, layer), 0) : vec4(1.0);
         return;
-    }
-    ivec2 base = pixel / step;
-    vec2 f = vec2(pixel - base * step) / float(step);
-    ivec2 last = textureSize(s_shadowMask, 0).xy - 1;
-    float toEye = 1.0 / max(length(position - u_cameraPosition.xyz), 1e-6);
-    ivec2 texels[4];
-    float weights[4];
-    float total = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        ivec2 corner = ivec2(k & 1, k >> 1);
-        float bilinear = (corner.x == 0 ? 1.0 - f.x : f.x) * (corner.y == 0 ? 1.0 - f.y : f.y);
-        texels[k] = min(base + corner, last);
-        ivec2 samplePixel = shadowMaskPixel(texels[k], viewport);
-        float sampleDepth = texelFetch(depths, samplePixel, 0).r;
-        // A sky sample (depth 0) is taken as very far from the plane.
-        float offPlane = sampleDepth > 0.0 ? abs(dot(worldPosition(samplePixel, sampleDepth) - position, normal)) * toEye
-                                           : 1.0;
-        float d = offPlane + 1e-4;
-        weights[k] = bilinear / (d * d);
-        total += weights[k];
     }
     for (int layer = 0; layer < MAX_SHADOW_SLOTS / 4; ++layer) {
         visibility[layer] = vec4(1.0);
         if (layer >= u_shadowMask.z) continue;
         vec4 sum = vec4(0.0);
-        for (int k = 0; k < 4; ++k) sum += weights[k] * texelFetch(s_shadowMask, ivec3(texels[k], layer), 0);
-        visibility[layer] = sum / total;
+        for (int k = 0; k < 4; ++k) sum += taps.weight[k] * texelFetch(s_shadowMask, ivec3(taps.texel[k], layer), 0);
+        visibility[layer] = sum / taps.total;
     }
 }
+
+// The shadow mask's last texel (for planeAwareTaps).
+ivec2 shadowMaskLastTexel() { return textureSize(s_shadowMask, 0).xy - 1; }
 
 // Light `index`'s visibility from shadowMaskVisibility's result: 1 for lights without a shadow map.
 float maskedLightVisibility(int index, vec4 visibility[MAX_SHADOW_SLOTS / 4]) {

@@ -14,6 +14,7 @@ AoSettings AoSettings::from(const RenderSettings& s) {
     ao.sky = s.common_("ao.sky") > 0.5f;
     ao.denoise = s.common_("ao.denoise") > 0.5f;
     ao.multiBounce = s.common_("ao.multibounce") > 0.5f;
+    ao.halfRes = s.common_("ao.half_res") > 0.5f;
     ao.radius = s.common_("ao.radius");
     ao.power = s.common_("ao.power");
     ao.falloff = s.common_("ao.falloff");
@@ -31,11 +32,14 @@ std::vector<PassTiming> AmbientOcclusion::prepare(const RenderSettings& settings
     settings_ = AoSettings::from(settings);
     std::vector<PassTiming> ran;
     if (!settings_.enabled) return ran;
-    if (width != width_ || height != height_) {
+    const int w = (width + step() - 1) / step(), h = (height + step() - 1) / step();
+    if (width != width_ || height != height_ || w != targetWidth_ || h != targetHeight_) {
         width_ = width;
         height_ = height;
-        raw_ = gl::createTexture2D(GL_R16F, width, height);
-        resolved_ = gl::createTexture2D(GL_RGBA16F, width, height);
+        targetWidth_ = w;
+        targetHeight_ = h;
+        raw_ = gl::createTexture2D(GL_R16F, w, h);
+        resolved_ = gl::createTexture2D(GL_RGBA16F, w, h);
         rawFbo_ = gl::createFramebuffer("ao raw", {raw_.id()});
         resolvedFbo_ = gl::createFramebuffer("ao resolved", {resolved_.id()});
     }

@@ -1,6 +1,7 @@
 // Ambient occlusion of the environment / ambient term (docs/ambient_occlusion.md): the targets and baked data
 // that the two AO passes (render/passes/gtao_pass.h, ao_resolve_pass.h) share, and what the lighting pass reads.
-// - Small scale: GTAO (shaders/ao/gtao.frag) into a raw visibility target at the internal resolution.
+// - Small scale: GTAO (shaders/ao/gtao.frag) into a raw visibility target at the internal resolution, or at every
+//   second pixel in x and y with ao.half_res (common/plane_aware_upsample.glsl).
 // - Large scale: the sky visibility baked once per static scene (ao/sky_visibility.h), uploaded as a 3D texture.
 // - The resolve pass writes occlusionTexture(): rgb the factor on the environment term, a the visibility.
 // With ao.enabled = 0 the lighting pass reads a 1 x 1 white texture (no cost, no change).
@@ -20,6 +21,7 @@ struct PassTiming;
 
 struct AoSettings {
     bool enabled = true, screen = true, sky = true, denoise = true, multiBounce = true;
+    bool halfRes = false;   // GTAO and resolve at every second pixel, interpolated by the lighting pass
     float radius = 1.0f, power = 1.0f, falloff = 0.8f;
     int slices = 2, steps = 4;
     ao::SkyVisibilityParams bake;
@@ -37,6 +39,10 @@ public:
                                     int width, int height);
     const AoSettings& settings() const { return settings_; }
 
+    // G-buffer pixels per texel of the raw and resolved targets (2 at ao.half_res) and their size.
+    int step() const { return settings_.halfRes ? 2 : 1; }
+    int targetWidth() const { return targetWidth_; }
+    int targetHeight() const { return targetHeight_; }
     GLuint rawFramebuffer() const { return rawFbo_.id(); }
     GLuint rawTexture() const { return raw_.id(); }
     GLuint resolveFramebuffer() const { return resolvedFbo_.id(); }
@@ -50,7 +56,7 @@ public:
 
 private:
     AoSettings settings_;
-    int width_ = 0, height_ = 0;
+    int width_ = 0, height_ = 0, targetWidth_ = 0, targetHeight_ = 0;
     gl::Texture raw_, resolved_, white_, skyTexture_;
     gl::Framebuffer rawFbo_, resolvedFbo_;
     ao::SkyVisibilityGrid sky_;

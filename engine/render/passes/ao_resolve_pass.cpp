@@ -13,13 +13,14 @@ AoResolvePass::AoResolvePass(const std::filesystem::path& shaderRoot, const Ambi
       ao_(ao) {}
 
 void AoResolvePass::execute(const FrameContext& frame) {
-    gl::fullscreenState(ao_.resolveFramebuffer(), frame.width, frame.height).apply();
+    gl::fullscreenState(ao_.resolveFramebuffer(), ao_.targetWidth(), ao_.targetHeight()).apply();
     program_.use();
     const AoSettings& s = ao_.settings();
     glProgramUniform4f(program_.id(), 0, s.screen ? 1.0f : 0.0f, s.denoise ? 1.0f : 0.0f, s.power,
                        s.multiBounce ? 1.0f : 0.0f);
     const glm::mat4 inverseProjection = glm::inverse(frame.camera.projection(float(frame.width) / float(frame.height)));
     glProgramUniformMatrix4fv(program_.id(), 1, 1, GL_FALSE, glm::value_ptr(inverseProjection));
+    glProgramUniform1i(program_.id(), 5, ao_.step());
     auto gbuffer = [&](int unit) { return frame.targets.gbufferTexture(unit - UNIT_GBUFFER_FIRST); };
     glBindTextureUnit(UNIT_AO_DEPTH, frame.targets.depthTexture());
     glBindTextureUnit(UNIT_AO_NORMAL, gbuffer(UNIT_GBUFFER_NORMAL_ALPHA));

@@ -21,12 +21,13 @@ bool GtaoPass::runs(const FrameContext& frame) const {
 }
 
 void GtaoPass::execute(const FrameContext& frame) {
-    gl::fullscreenState(ao_.rawFramebuffer(), frame.width, frame.height).apply();
+    gl::fullscreenState(ao_.rawFramebuffer(), ao_.targetWidth(), ao_.targetHeight()).apply();
     program_.use();
     const AoSettings& s = ao_.settings();
     const glm::mat4 inverseProjection = glm::inverse(frame.camera.projection(float(frame.width) / float(frame.height)));
     glProgramUniformMatrix4fv(program_.id(), 0, 1, GL_FALSE, glm::value_ptr(inverseProjection));
     glProgramUniform4f(program_.id(), 1, s.radius, float(s.slices), float(s.steps), s.falloff);
+    glProgramUniform1i(program_.id(), 2, ao_.step());
     glBindTextureUnit(UNIT_AO_DEPTH, frame.targets.depthTexture());
     glBindTextureUnit(UNIT_AO_NORMAL, frame.targets.gbufferTexture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
     glBindSampler(UNIT_AO_DEPTH, linearDepthSampler_.id());
