@@ -165,7 +165,7 @@ void main() {
     int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;
     UpsampleTaps aoTaps;
 #ifdef SHADOWS
-    UpsampleTaps maskTaps;
+    UpsampleTaps maskTaps;   // at the G-buffer's own position, as the mask's samples
     if (u_shadowMask.x != 1)
         maskTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, u_shadowMask.x,
                                   shadowMaskLastTexel());
@@ -175,11 +175,13 @@ void main() {
     } else if (aoStep == 1) {
         occlusion = texelFetch(u_ambientOcclusion, pixel, 0);
     } else {
+        bool sharedTaps = false;
 #ifdef SHADOWS
-        if (u_shadowMask.x == aoStep) aoTaps = maskTaps;
-        else
+        sharedTaps = u_shadowMask.x == aoStep;
+        if (sharedTaps) aoTaps = maskTaps;
 #endif
-        aoTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
+        if (!sharedTaps)
+            aoTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
         occlusion = vec4(0.0);
         for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
         occlusion /= aoTaps.total;

@@ -127,7 +127,7 @@ public:
         // features under two pixels.
         if (softwareRenderer_ && !options.screenshot && !settings.isSet("shadow.half_res"))
             settings.apply("shadow.half_res=1");
-        // And ambient occlusion at every second pixel (ao.half_res, docs/ambient_occlusion.md#half-resolution).
+        // And ambient occlusion at every second pixel (ao.half_res, docs/ambient_occlusion.md#half-resolution-aohalf_res).
         if (softwareRenderer_ && !options.screenshot && !settings.isSet("ao.half_res"))
             settings.apply("ao.half_res=1");
         renderer_ = std::make_unique<Renderer>(shaderRoot, settings);

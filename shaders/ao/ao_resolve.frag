@@ -73,7 +73,7 @@ void main() {
     vec4 world = u_inverseViewProjection * vec4(ndc, depth, 1.0);
     float visibility = pow(clamp(screen * skyVisibility(world.xyz / world.w, normal), 0.0, 1.0), u_resolve.z);
     // At ao.half_res the multi-bounce colour is that of the sample pixel's albedo, which the lighting pass then
-    // interpolates with the visibility (docs/ambient_occlusion.md#half-resolution).
+    // interpolates with the visibility (docs/ambient_occlusion.md#half-resolution-aohalf_res).
     vec3 albedo = (1.0 - texelFetch(g_tangentMetallic, pixel, 0).w) * texelFetch(g_baseColorMask, pixel, 0).rgb;
     vec3 factor = u_resolve.w > 0.5 ? min(multiBounce(visibility, albedo), vec3(1.0)) : vec3(visibility);
     o_occlusion = vec4(factor, visibility);
