@@ -162,7 +162,7 @@ void main() {
     // taps are shared with the shadow mask when both run at half resolution.
     vec4 occlusion;
     ivec2 aoSize = textureSize(u_ambientOcclusion, 0);
-    int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;
+    int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;   // AmbientOcclusion::step(): a halved target is ceil(w / 2) wide
     UpsampleTaps aoTaps;
 #ifdef SHADOWS
     UpsampleTaps maskTaps;   // at the G-buffer's own position, as the mask's samples
