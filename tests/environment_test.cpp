@@ -551,4 +551,111 @@ TEST(Environment, SharedMapsRenderFinite) {
     EXPECT_GT(maps, 0);
 }
 
+
+// The split sum on every shared map against quadrature (issue 16). Maps with tiny, very bright lamps
+// (studio_small_03: up to 3568 against a mean of 1.9) are the hard case.
+// (1) Each prefiltered level, at 20 random texels per level and NDF, against CPU quadrature of the same integral
+//     over every texel of the source cube (envref::prefilteredRadianceReference), within 12% (measured 4.9%;
+//     filtered importance sampling, which the texel quadrature of shaders/env/prefilter.comp replaced, was off by
+//     up to 2x here).
+// (2) The lookup: white metal sphere (96 x 96), both NDFs, the pixels facing the eye (n.v >= 0.8), against the
+//     split sum at the material's exact alpha (prefiltered quadrature times the exact (A, B)). On a level
+//     (alpha 0.16, 0.36) the lookup must be within 25% (measured 0.070 worst).
+//     Between levels and at alpha 1 (the 8 x 8 level) the errors are printed, not asserted: with lamps this bright
+//     no blend of two levels 4x apart in alpha reproduces a lobe's tail (docs/environment.md, "Known limit"). The
+//     split sum's own approximation (n = v = r) against the true reflection integral is printed at n.v >= 0.95.
+TEST(Environment, SplitSumOnSharedMapsAgainstQuadrature) {
+    fs::path dir = sharedAssets() / "hdri";
+    if (!fs::is_directory(dir)) GTEST_SKIP() << dir << " not found";
+    SphereRig rig;
+    rig.size = 96;
+    rig.material().metallic = 1.0f;
+    RenderSettings normalView;
+    normalView.debugView = 2;
+    std::vector<fs::path> maps;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".hdr" || entry.path().extension() == ".exr") maps.push_back(entry.path());
+    std::sort(maps.begin(), maps.end());
+    ASSERT_FALSE(maps.empty());
+    auto mean = [](glm::dvec3 c) { return (c.x + c.y + c.z) / 3.0; };
+    auto onLevel = [](float alpha) {
+        for (int level = 1; level + 1 < Environment::kPrefilterLevels; ++level)
+            if (std::abs(alpha - Environment::levelAlpha(level)) < 1e-4f) return true;
+        return false;
+    };
+    double worstLevel = 0.0, worstOnLevel = 0.0, worstBetween = 0.0;
+    for (const fs::path& map : maps) {
+        rig.scene.environment = map.string();
+        rig.renderer->prepareEnvironment(rig.scene);
+        const Environment& env = rig.renderer->environment();
+        // Level 1 of the source (128^2 faces) for every reference: level 0 gave the same errors within 0.3% and four
+        // times the test's time.
+        envref::CubeImage source = readCubeLevel(env.sourceCube(), 1, Environment::kFaceSize);
+        std::mt19937 rng(7);
+        for (int level = 1; level < Environment::kPrefilterLevels; ++level)
+            for (int ndf : {envref::kNdfGgx, envref::kNdfBeckmann}) {
+                envref::CubeImage gpu = readCubeLevel(env.specularCubeArray(), level, Environment::kFaceSize, ndf, 2);
+                double worst = 0.0, sum = 0.0;
+                for (int i = 0; i < 20; ++i) {
+                    int face = int(rng() % 6), x = int(rng() % gpu.size), y = int(rng() % gpu.size);
+                    glm::vec3 r = envref::cubeTexelDirection(face, x, y, gpu.size);
+                    glm::dvec3 ref = envref::prefilteredRadianceReference(source, r, Environment::levelAlpha(level), ndf);
+                    double e = relativeError(glm::dvec3(gpu.texel(face, x, y)), ref);
+                    worst = std::max(worst, e);
+                    sum += e;
+                }
+                std::printf("[ levels    ] %-26s level %d ndf %d: worst %.3f mean %.3f\n", map.filename().string().c_str(),
+                            level, ndf, worst, sum / 20.0);
+                EXPECT_LT(worst, 0.12) << map.filename() << " level " << level << " ndf " << ndf;
+                EXPECT_LT(sum / 20.0, 0.03) << map.filename() << " level " << level << " ndf " << ndf;
+                worstLevel = std::max(worstLevel, worst);
+            }
+        std::vector<float> normals = rig.render(normalView);
+        for (NdfType ndf : {NdfType::Ggx, NdfType::Beckmann})
+            for (float alpha : {0.05f, 0.1f, 0.16f, 0.36f, 1.0f}) {
+                rig.material().alpha = alpha;
+                rig.material().ndf = ndf;
+                std::vector<float> hdr = rig.render(RenderSettings{});
+                double worst = 0.0, sum = 0.0, worstTruth = 0.0;
+                int count = 0;
+                for (int y = 4; y < rig.size; y += 8)
+                    for (int x = 4; x < rig.size; x += 8) {
+                        if (!isSurface(hdr, rig.size, x, y)) continue;
+                        glm::dvec3 n = glm::normalize(pixel(normals, rig.size, x, y)), v = rig.viewDirection(x, y);
+                        double nDotV = glm::dot(n, v);
+                        if (nDotV < 0.8) continue;
+                        glm::dvec3 r = 2.0 * nDotV * n - v;
+                        glm::dvec2 ab = envref::splitSumReference(nDotV, alpha, int(ndf));
+                        double split =
+                            mean(envref::prefilteredRadianceReference(source, glm::vec3(r), alpha, int(ndf))) *
+                            (ab.x + ab.y);
+                        // Relative error of the channel mean (a lamp's colour ratios are not the point).
+                        double value = mean(pixel(hdr, rig.size, x, y));
+                        double e = std::abs(value - split) / std::max(split, 1e-6);
+                        worst = std::max(worst, e);
+                        sum += e;
+                        ++count;
+                        if (nDotV >= 0.95) {
+                            double truth = mean(envref::specularIntegralReference(
+                                source, glm::vec3(n), glm::vec3(v), alpha, int(ndf), glm::vec3(1.0f)));
+                            worstTruth = std::max(worstTruth, std::abs(value - truth) / std::max(truth, 1e-6));
+                        }
+                    }
+                ASSERT_GT(count, 12);
+                bool level = onLevel(alpha);
+                std::printf("[ split sum ] %-26s ndf %d alpha %.2f%s: against quadrature worst %.3f mean %.3f (%d px); "
+                            "against the true integral at n.v >= 0.95 worst %.3f\n",
+                            map.filename().string().c_str(), int(ndf), alpha, level ? " (level)" : "", worst,
+                            sum / count, count, worstTruth);
+                if (level) {
+                    EXPECT_LT(worst, 0.25) << map.filename() << " ndf " << int(ndf) << " alpha " << alpha;
+                    worstOnLevel = std::max(worstOnLevel, worst);
+                } else {
+                    worstBetween = std::max(worstBetween, worst);
+                }
+            }
+    }
+    std::printf("[ split sum ] worst over every map: levels %.3f, lookup on a level %.3f, between levels or at "
+                "alpha 1 %.3f\n", worstLevel, worstOnLevel, worstBetween);
+}
 }  // namespace glimmer

@@ -19,10 +19,6 @@ namespace glimmer {
 
 namespace {
 
-// Samples per texel of prefiltered level k: 32 << k (CubePrefilter::samples). Rough levels have few texels but
-// wide lobes, where the box-filtered source mips are coarsest, so they get the most samples; measured against CPU
-// quadrature in tests/environment_test.cpp (a flat 128 left 3.9% errors at alpha = 1 and cost more in total).
-int prefilterSamples(int level) { return CubePrefilter::samples(level); }
 constexpr int kBrdfLutSamples = 4096;    // per table entry and NDF (512 left 0.026 errors at n.v < 0.1)
 constexpr int kLocalSize = 8;            // compute work-group edge (shaders/env/*.comp)
 
@@ -75,7 +71,8 @@ gl::Texture createBrdfLut() {
 
 // The compute shaders that build the maps (their expanded sources are part of the cache key).
 constexpr const char* kEnvironmentShaders[] = {"env/equirect_to_cube.comp", "env/procedural_sky.comp",
-                                               "env/prefilter.comp", "env/brdf_lut.comp"};
+                                               "env/prefilter.comp", "env/radiance_centroid.comp", "env/upsample_cube.comp",
+                                               "env/brdf_lut.comp"};
 
 void finishAndTime(double& slot, Stopwatch& clock) {
     glFinish();
@@ -253,12 +250,11 @@ std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunD
     std::string shaders;
     for (const char* file : kEnvironmentShaders)
         shaders += gl::expandShaderSource(shaderRoot_, file, {file, {{GL_COMPUTE_SHADER, file}}}).text;
-    std::string samples;
-    for (int level = 1; level < kPrefilterLevels; ++level) samples += std::to_string(prefilterSamples(level)) + ",";
     std::snprintf(text, sizeof text,
-                  " | face %d, levels %d, prefilter samples %s brdf table %d x %d samples, irradiance face %d | "
-                  "shaders %s",
-                  kFaceSize, kPrefilterLevels, samples.c_str(), kBrdfLutSize, kBrdfLutSamples, kIrradianceFace,
+                  " | face %d, levels %d, prefilter quadrature refine %g roots mip %d, brdf table %d x %d samples, "
+                  "irradiance face %d | shaders %s",
+                  kFaceSize, kPrefilterLevels, double(CubePrefilter::kRefine), CubePrefilter::rootMip(kFaceSize),
+                  kBrdfLutSize, kBrdfLutSamples, kIrradianceFace,
                   cache::contentHash(shaders).c_str());
     return what + text;
 }
@@ -435,9 +431,7 @@ nlohmann::json Environment::stats() const {
     if (enabled_) {
         j["face_size"] = kFaceSize;
         j["prefilter_levels"] = kPrefilterLevels;
-        nlohmann::json samples = nlohmann::json::array();
-        for (int level = 1; level < kPrefilterLevels; ++level) samples.push_back(prefilterSamples(level));
-        j["prefilter_samples"] = samples;
+        j["prefilter_refine"] = CubePrefilter::kRefine;
         j["brdf_lut_size"] = kBrdfLutSize;
         j["precompute_ms"] = {{"load", timings_.loadMs},           {"cubemap", timings_.convertMs},
                               {"mips", timings_.mipsMs},           {"prefilter", timings_.prefilterMs},

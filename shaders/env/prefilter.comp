@@ -1,45 +1,99 @@
-// Prefiltered specular radiance for one roughness level (split-sum, Karis 2013, Eq. 3 with n = v = r):
-//   L(r) = sum L(l_k) (n.l_k) / sum (n.l_k),  h_k ~ D(h) (n.h),  l_k = reflect(-r, h_k)
-// for the NDF of this layer (0 GGX, 1 Beckmann). Each sample reads the source mip whose texel solid angle
-// matches the sample's solid angle 1 / (N pdf(l)) (filtered importance sampling, Krivanek & Colbert 2008,
-// GPU Gems 3 Eq. 20-1, 20-2), so a few hundred samples give a smooth result. With v = n, pdf(l) = D(h) / 4.
-// Deviation: lod bias +0.5 instead of the paper's +1. Worst relative error against CPU quadrature of the same
-// integral (tests/environment_test.cpp, synthetic map) was 3.0% with bias 0 (sample-pattern noise), 2.6% with
-// +0.5, 5.6% with +1 (blurs wider than the narrow lobes of levels 1-2).
+// Prefiltered specular radiance for one roughness level (split sum, Karis 2013, Eq. 3 with n = v = r):
+//   L(r) = integral L(l) D(h) (n.l) dl / integral D(h) (n.l) dl,   h = normalize(l + r)
+// for the NDF of this layer (0 GGX, 1 Beckmann), by quadrature over the texels of the source cube's mips rather
+// than by sampling. Each target texel walks a quadtree over the source: the 4 x 4 texels of each face of a coarse
+// mip are the roots, and a texel is split into its four children one mip finer while it is wider than
+// u_refine x max(angle to r, lobe width 2 alpha): near the lobe the walk reaches fine texels, the tails are summed
+// from coarse ones. The texels met form a partition of the sphere, so nothing is counted twice or missed.
+// A texel's integral of radiance and its solid angle are exact sums over the level-0 texels it covers (the chains
+// of shaders/env/radiance_centroid.comp); its weight is taken at the luminance-weighted mean direction of those
+// texels, so a lamp of a few texels inside a coarse texel is weighted where it is, not at the texel's centre (the
+// first-order error of a midpoint rule vanishes). The normalisation uses the texel centre (the lobe's own
+// integral, independent of the map).
+// Why not filtered importance sampling (Krivanek & Colbert 2008), which this replaced: with a fixed point set per
+// texel, a lamp of a few texels (studio_small_03: up to 3568 against a mean of 1.9) is hit or missed and read
+// from box mips it is spread over, and the levels came out up to 2x off per texel against quadrature
+// (docs/environment.md, "Prefiltered levels").
 // All four channels are filtered: a reflection probe's alpha is its coverage by geometry (sky texels 0), which the
 // lighting pass blends with the distant environment (render/reflection_probes.h); the environment's alpha is 1.
 #include "env/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform samplerCube u_source;                     // full mip chain
+layout(binding = 0) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
+layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
 layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one level, all layers
 layout(location = 0) uniform int u_size;          // face size of the target level
 layout(location = 1) uniform float u_alpha;
 layout(location = 2) uniform int u_ndf;           // also the target layer
-layout(location = 3) uniform int u_sampleCount;
+layout(location = 3) uniform int u_rootMip;       // source mip whose texels are the quadtree's roots
 layout(location = 4) uniform int u_sourceSize;    // face size of source level 0
-layout(location = 5) uniform float u_maxSourceLod;
-layout(location = 6) uniform int u_firstLayer;   // layer of face 0 of NDF 0 (probes: 12 per probe)
+layout(location = 5) uniform float u_refine;      // split while texel width > u_refine x max(angle, lobe width)
+layout(location = 6) uniform int u_firstLayer;    // layer of face 0 of NDF 0 (probes: 12 per probe)
+layout(location = 7) uniform float u_horizonWidth;   // texels wider than this are split on the horizon
+
+// Weight of direction l for the lobe around r: D(h) (n.l) with n = r (0 behind the surface).
+float lobeWeight(vec3 l, vec3 r) {
+    float nDotL = dot(l, r);
+    if (nDotL <= 0.0) return 0.0;
+    float cosH = sqrt(0.5 * (1.0 + nDotL));   // h = normalize(l + r): cos(theta_h) = cos(theta_l / 2)
+    return D_smooth(vec3(0.0, 0.0, cosH), u_alpha, u_ndf) * nDotL;
+}
+
+// Node of the walk: face 3 bits, mip 4 bits, x and y 12 bits each.
+int packNode(int face, int mip, int x, int y) { return face | (mip << 3) | (x << 7) | (y << 19); }
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     if (id.x >= u_size || id.y >= u_size) return;
-    vec3 n = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
-    mat3 frame = frameAround(n);
-    float texelSolidAngle = 4.0 * PI / (6.0 * float(u_sourceSize * u_sourceSize));
+    vec3 r = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
+    float lobeWidth = 2.0 * u_alpha;
+    // D at theta_h = 45 degrees (l on the horizon of n = r) against D at the peak.
+    float horizonShare = D_smooth(vec3(0.0, 0.0, sqrt(0.5)), u_alpha, u_ndf) / D_smooth(vec3(0.0, 0.0, 1.0), u_alpha, u_ndf);
+    bool splitHorizon = horizonShare > 0.001;
+    int rootSize = max(u_sourceSize >> u_rootMip, 1);
     vec4 sum = vec4(0.0);
     float weight = 0.0;
-    for (int i = 0; i < u_sampleCount; ++i) {
-        vec3 hLocal = sampleHalfVector(hammersley(uint(i), uint(u_sampleCount)), u_alpha, u_ndf);
-        vec3 h = frame * hLocal;
-        vec3 l = 2.0 * dot(n, h) * h - n;
-        float nDotL = dot(n, l);
-        if (nDotL <= 0.0) continue;
-        float pdf = D_smooth(hLocal, u_alpha, u_ndf) * 0.25;
-        float sampleSolidAngle = 1.0 / (float(u_sampleCount) * max(pdf, 1e-8));
-        float lod = clamp(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 0.5, 0.0, u_maxSourceLod);
-        sum += textureLod(u_source, l, lod) * nDotL;
-        weight += nDotL;
+    int stack[64];
+    for (int root = 0; root < 6 * rootSize * rootSize; ++root) {
+        int rootFace = root / (rootSize * rootSize);
+        int rest = root - rootFace * rootSize * rootSize;
+        stack[0] = packNode(rootFace, u_rootMip, rest % rootSize, rest / rootSize);
+        int depth = 1;
+        while (depth > 0) {
+            int node = stack[--depth];
+            int face = node & 7, mip = (node >> 3) & 15, x = (node >> 7) & 4095, y = (node >> 19) & 4095;
+            int size = max(u_sourceSize >> mip, 1);
+            vec3 centre = cubeDirection(face, vec2(x, y) + 0.5, size);
+            float width = 2.0 / float(size);   // angular width at the face centre (an upper bound)
+            float cosAngle = dot(centre, r);
+            if (cosAngle < -1.5 * width) continue;   // the whole texel is behind the surface
+            float angle = acos(clamp(cosAngle, -1.0, 1.0));
+            // Also split texels that straddle the surface's horizon (n.l = 0, where the weight has a kink) down to
+            // u_horizonWidth, for lobes that still weigh something there (wide GGX and Beckmann lobes).
+            // Beckmann's tail falls as exp(-tan^2(theta_h) / alpha^2): its log-slope per radian of l is
+            // g = tan(theta_h) (1 + tan^2) / alpha^2, far steeper than GGX's 4 / angle, so there the feature size is
+            // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge. Not for the narrowest
+            // level (alpha 0.04): it doubled that level's cost and took its worst error only from 5% to 1.6%.
+            float feature = angle;
+            if (u_ndf == NDF_BECKMANN && u_alpha >= 0.1 && angle > lobeWidth) {
+                float t = tan(0.5 * angle);
+                float g = t * (1.0 + t * t) / (u_alpha * u_alpha);
+                float nearEdge = max(angle - 0.75 * width, 0.0);
+                float tNear = tan(0.5 * nearEdge);
+                if (exp(-tNear * tNear / (u_alpha * u_alpha)) > 1e-4) feature = min(feature, 4.0 / g);
+            }
+            bool nearLobe = width > u_refine * max(feature, lobeWidth);
+            bool onHorizon = splitHorizon && abs(cosAngle) < 0.75 * width && width > u_horizonWidth;
+            if (mip > 0 && (nearLobe || onHorizon) && depth + 4 <= 64) {
+                for (int c = 0; c < 4; ++c) stack[depth++] = packNode(face, mip - 1, 2 * x + (c & 1), 2 * y + (c >> 1));
+                continue;
+            }
+            float texels = float(1 << (2 * mip));   // level-0 texels per mip-m texel: the box mean x this = the sum
+            vec4 where = texelFetch(u_centroid, ivec3(x, y, face), mip);
+            vec3 from = dot(where.rgb, where.rgb) > 0.0 ? normalize(where.rgb) : centre;
+            sum += texelFetch(u_weighted, ivec3(x, y, face), mip) * (lobeWeight(from, r) * texels);
+            weight += lobeWeight(centre, r) * (where.a * texels);
+        }
     }
     vec4 radiance = weight > 0.0 ? sum / weight : vec4(0.0);
     imageStore(u_target, ivec3(id.xy, u_firstLayer + u_ndf * 6 + id.z), radiance);
