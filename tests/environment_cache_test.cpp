@@ -74,7 +74,7 @@ std::vector<float> allLevels(GLuint texture, int levels, size_t level0Floats) {
 }
 
 struct Maps {
-    std::vector<float> source, specular, lut;
+    std::vector<float> source, specular, rungs, lut;
     std::array<glm::vec3, 9> sh;
 };
 
@@ -82,7 +82,9 @@ Maps readMaps(const Environment& env) {
     const size_t face = size_t(Environment::kFaceSize) * Environment::kFaceSize * 4;
     Maps m;
     m.source = allLevels(env.sourceCube(), 9, face * 6);
-    m.specular = allLevels(env.specularCubeArray(), Environment::kPrefilterLevels, face * 12);
+    m.specular = allLevels(env.specularCubeArray(), 1, face * 12);
+    m.rungs = allLevels(env.specularFineArray(), Environment::kFineLevels,
+                        (face / 4) * 12 * Environment::kSublevels);
     m.lut.resize(size_t(Environment::kBrdfLutSize) * Environment::kBrdfLutSize * 4);
     glGetTextureImage(env.brdfLut(), 0, GL_RGBA, GL_FLOAT, GLsizei(m.lut.size() * sizeof(float)), m.lut.data());
     m.sh = env.irradianceSh();
@@ -91,7 +93,8 @@ Maps readMaps(const Environment& env) {
 
 void expectSameMaps(const Maps& a, const Maps& b) {
     EXPECT_TRUE(a.source == b.source) << "source cube differs";
-    EXPECT_TRUE(a.specular == b.specular) << "prefiltered levels differ";
+    EXPECT_TRUE(a.specular == b.specular) << "mirror level differs";
+    EXPECT_TRUE(a.rungs == b.rungs) << "prefiltered rungs differ";
     EXPECT_TRUE(a.lut == b.lut) << "BRDF table differs";
     for (int i = 0; i < 9; ++i) EXPECT_EQ(a.sh[i], b.sh[i]) << "SH " << i;
 }

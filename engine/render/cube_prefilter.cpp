@@ -10,9 +10,9 @@ constexpr int kRootFace = 4;      // the quadtree's roots: the texels of the mip
 // Texels straddling the horizon are split while wider than this (radians at the face centre): 1/8 of a face, so
 // they end at 1/16 of a face (with 1/32 the wide levels changed by under 1%).
 constexpr float kHorizonWidth = 2.0f / 16.0f;
-// Levels 1 .. this are computed at half their face size and upsampled bilinearly: their lobes (alpha 0.04 and 0.16)
-// still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), they cost four
-// times less, and the upsampling moved the worst texel against quadrature by under 1% (docs/environment.md).
+// runMipChain: levels 1 .. this are computed at half their face size and upsampled bilinearly: their lobes (alpha
+// 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), they
+// cost four times less, and the upsampling moved the worst texel against quadrature by under 1% (docs/environment.md).
 constexpr int kHalfResolutionLevels = 2;
 int groups(int size) { return (size + kLocalSize - 1) / kLocalSize; }
 int mipCount(int size) {
@@ -24,7 +24,7 @@ int mipCount(int size) {
 
 CubePrefilter::CubePrefilter(const std::filesystem::path& shaderRoot)
     : program_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "env/prefilter.comp"}}}),
-      upsampleProgram_(shaderRoot, {"env/upsample_cube", {{GL_COMPUTE_SHADER, "env/upsample_cube.comp"}}}),
+      resampleProgram_(shaderRoot, {"env/resample_cube", {{GL_COMPUTE_SHADER, "env/resample_cube.comp"}}}),
       sumsProgram_(shaderRoot, {"env/radiance_centroid", {{GL_COMPUTE_SHADER, "env/radiance_centroid.comp"}}}) {}
 
 int CubePrefilter::rootMip(int faceSize) {
@@ -56,7 +56,20 @@ void CubePrefilter::buildSums(GLuint sourceLayers, int faceSize) {
     glGenerateTextureMipmap(centroids_.id());
 }
 
-void CubePrefilter::run(GLuint source, int faceSize, GLuint target, int levels, int firstLayer, unsigned ndfMask) {
+void CubePrefilter::resample(GLuint source, int sourceCube, int sourceMip, GLuint target, int mip, int size,
+                             int targetLayerFace) {
+    resampleProgram_.use();
+    glBindTextureUnit(0, source);
+    glBindImageTexture(0, target, mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUniform1i(0, size);
+    glUniform1i(1, sourceCube);
+    glUniform1i(2, targetLayerFace);
+    glUniform1i(3, sourceMip);
+    glDispatchCompute(groups(size), groups(size), 6);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& levels, unsigned ndfMask) {
     // The source cube's faces as a 2D array, so the walk can texelFetch a given face, texel and mip.
     GLuint layers = 0;
     glGenTextures(1, &layers);
@@ -64,20 +77,12 @@ void CubePrefilter::run(GLuint source, int faceSize, GLuint target, int levels, 
     gl::Texture sourceLayers(layers);
     buildSums(sourceLayers.id(), faceSize);
 
-    program_.use();
-    glBindTextureUnit(0, weighted_.id());
-    glBindTextureUnit(1, centroids_.id());
-    glUniform1i(3, rootMip(faceSize));
-    glUniform1i(4, faceSize);
-    glUniform1f(5, kRefine);
-    glUniform1i(6, firstLayer);
-    glUniform1f(7, kHorizonWidth);
-    for (int level = 1; level < levels; ++level) {
-        int size = std::max(faceSize >> level, 1);
-        bool half = level <= kHalfResolutionLevels && size >= 2 * kLocalSize;
-        int computed = half ? size / 2 : size;
-        gl::Texture scratch;
-        if (half) {
+    gl::Texture scratch;   // levels computed below their size: one cube per NDF
+    int scratchSize = 0;
+    for (const Level& level : levels) {
+        int computed = level.computedSize > 0 ? std::min(level.computedSize, level.size) : level.size;
+        bool half = computed < level.size;   // upsampled from a scratch array
+        if (half && scratchSize != computed) {
             GLuint array = 0;
             glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
             scratch = gl::Texture(array);
@@ -86,35 +91,49 @@ void CubePrefilter::run(GLuint source, int faceSize, GLuint target, int levels, 
             glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
             glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
             glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            scratchSize = computed;
         }
         program_.use();
+        glBindTextureUnit(0, weighted_.id());
+        glBindTextureUnit(1, centroids_.id());
+        glUniform1i(3, rootMip(faceSize));
+        glUniform1i(4, faceSize);
+        glUniform1f(5, kRefine);
+        glUniform1f(7, kHorizonWidth);
         if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        else glBindImageTexture(0, target, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        else glBindImageTexture(0, level.target, level.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glUniform1i(0, computed);
-        glUniform1f(1, levelAlpha(level, levels));
-        glUniform1i(6, half ? 0 : firstLayer);
+        glUniform1f(1, level.alpha);
         for (int ndf = 0; ndf < 2; ++ndf) {
             if (!(ndfMask & (1u << ndf))) continue;
             glUniform1i(2, ndf);
+            glUniform1i(6, half ? 6 * ndf : level.layerFace[ndf]);
             glDispatchCompute(groups(computed), groups(computed), 6);
         }
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         if (!half) continue;
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        upsampleProgram_.use();
-        glBindTextureUnit(0, scratch.id());
-        glBindImageTexture(0, target, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glUniform1i(0, size);
-        glUniform1i(2, firstLayer);
-        for (int ndf = 0; ndf < 2; ++ndf) {
-            if (!(ndfMask & (1u << ndf))) continue;
-            glUniform1i(1, ndf);
-            glDispatchCompute(groups(size), groups(size), 6);
-        }
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glBindTextureUnit(0, weighted_.id());   // the walk's inputs again for the next level
-        glBindTextureUnit(1, centroids_.id());
+        for (int ndf = 0; ndf < 2; ++ndf)
+            if (ndfMask & (1u << ndf))
+                resample(scratch.id(), ndf, 0, level.target, level.mip, level.size, level.layerFace[ndf]);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void CubePrefilter::runMipChain(GLuint source, int faceSize, GLuint target, int levels, int firstLayer,
+                                unsigned ndfMask) {
+    std::vector<Level> chain;
+    for (int k = 1; k < levels; ++k) {
+        Level level;
+        level.alpha = levelAlpha(k, levels);
+        level.target = target;
+        level.mip = k;
+        level.size = std::max(faceSize >> k, 1);
+        level.layerFace[0] = firstLayer;
+        level.layerFace[1] = firstLayer + 6;
+        if (k <= kHalfResolutionLevels && level.size >= 2 * kLocalSize) level.computedSize = level.size / 2;
+        chain.push_back(level);
+    }
+    run(source, faceSize, chain, ndfMask);
 }
 
 }  // namespace glimmer

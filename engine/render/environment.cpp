@@ -53,8 +53,19 @@ gl::Texture createSourceCube() {
 gl::Texture createSpecularArray() {
     GLuint array = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    glTextureStorage3D(array, Environment::kPrefilterLevels, GL_RGBA32F, Environment::kFaceSize,
-                       Environment::kFaceSize, 6 * 2);
+    glTextureStorage3D(array, 1, GL_RGBA32F, Environment::kFaceSize, Environment::kFaceSize, 6 * 2);
+    glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return gl::Texture(array);
+}
+
+gl::Texture createSpecularFineArray() {
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
+    glTextureStorage3D(array, Environment::kFineLevels, GL_RGBA32F, Environment::kFaceSize / 2,
+                       Environment::kFaceSize / 2, 6 * 2 * Environment::kSublevels);
     glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -71,7 +82,7 @@ gl::Texture createBrdfLut() {
 
 // The compute shaders that build the maps (their expanded sources are part of the cache key).
 constexpr const char* kEnvironmentShaders[] = {"env/equirect_to_cube.comp", "env/procedural_sky.comp",
-                                               "env/prefilter.comp", "env/radiance_centroid.comp", "env/upsample_cube.comp",
+                                               "env/prefilter.comp", "env/radiance_centroid.comp", "env/resample_cube.comp",
                                                "env/brdf_lut.comp"};
 
 void finishAndTime(double& slot, Stopwatch& clock) {
@@ -157,6 +168,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     if (spec.kind == EnvironmentSpec::Kind::None) {
         sourceCube_.reset();
         specular_.reset();
+        specularFine_.reset();
         enabled_ = false;
         active_ = spec;
         activeKey_ = key.str();
@@ -210,7 +222,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     timings_.brdfLutMs = lutMs;
     if (cache) {
         Stopwatch clock;
-        timings_.cacheStored = cache->store({sourceCube_.id(), specular_.id(), brdfLut_.id()}, sh_);
+        timings_.cacheStored = cache->store({sourceCube_.id(), specular_.id(), specularFine_.id(), brdfLut_.id()}, sh_);
         timings_.cacheStoreMs = clock.elapsedMs();
     }
     timings_.totalMs = total.elapsedMs();
@@ -251,9 +263,10 @@ std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunD
     for (const char* file : kEnvironmentShaders)
         shaders += gl::expandShaderSource(shaderRoot_, file, {file, {{GL_COMPUTE_SHADER, file}}}).text;
     std::snprintf(text, sizeof text,
-                  " | face %d, levels %d, prefilter quadrature refine %g roots mip %d, brdf table %d x %d samples, "
-                  "irradiance face %d | shaders %s",
-                  kFaceSize, kPrefilterLevels, double(CubePrefilter::kRefine), CubePrefilter::rootMip(kFaceSize),
+                  " | face %d, rungs %d from alpha %g, %d a mip, prefilter quadrature refine %g roots mip %d, brdf "
+                  "table %d x %d samples, irradiance face %d | shaders %s",
+                  kFaceSize, kRungs, double(kRungAlphaMin), kSublevels, double(CubePrefilter::kRefine),
+                  CubePrefilter::rootMip(kFaceSize),
                   kBrdfLutSize, kBrdfLutSamples, kIrradianceFace,
                   cache::contentHash(shaders).c_str());
     return what + text;
@@ -261,11 +274,13 @@ std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunD
 
 bool Environment::loadFromCache(const EnvironmentCache& cache) {
     // Into new textures: a miss or a bad file leaves the current environment as it was.
-    gl::Texture source = createSourceCube(), specular = createSpecularArray(), lut = createBrdfLut();
+    gl::Texture source = createSourceCube(), specular = createSpecularArray(), fine = createSpecularFineArray(),
+                lut = createBrdfLut();
     std::array<glm::vec3, 9> sh{};
-    if (!cache.load({source.id(), specular.id(), lut.id()}, sh)) return false;
+    if (!cache.load({source.id(), specular.id(), fine.id(), lut.id()}, sh)) return false;
     sourceCube_ = std::move(source);
     specular_ = std::move(specular);
+    specularFine_ = std::move(fine);
     sh_ = sh;
     if (!brdfLut_) {
         brdfLut_ = std::move(lut);
@@ -361,6 +376,7 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
     }
 
     specular_ = createSpecularArray();
+    specularFine_ = createSpecularFineArray();
     GLuint array = specular_.id();
     // Level 0 of both NDF layers is the unfiltered source: the background and mirror reflections.
     for (int layer = 0; layer < 2; ++layer)
@@ -378,8 +394,33 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
     timings_.irradianceMs = clock.elapsedMs();
 }
 
+namespace {
+// Faces over 32 are filtered at the smallest power of two >= 1.6 / alpha (rungs 1 and 2 at 64, the rest at 32 or
+// 16) and upsampled bilinearly; not below 32 under alpha 0.5 (16 put studio_small_03 22% off at alpha 0.16,
+// Beckmann, and rooitou_park 15% at 0.42), nor below 16 above it (the rough lobes' horizon kink: 8 x 8 put alpha 1
+// 1.9x off). Rung 2 at 32 was 30% off at a texel (empty_warehouse_01, Beckmann); docs/environment.md.
+int computedFaceSize(float alpha, int size) {
+    int least = alpha < 0.5f ? 32 : 16;
+    if (size <= least) return size;
+    int computed = least;
+    while (computed < size && float(computed) * alpha < 1.6f) computed *= 2;
+    return computed;
+}
+}  // namespace
+
 void Environment::prefilter() {
-    prefilter_->run(sourceCube_.id(), kFaceSize, specular_.id(), kPrefilterLevels, 0, 0x3u);
+    std::vector<CubePrefilter::Level> levels;
+    for (int rung = 1; rung <= kRungs; ++rung) {
+        CubePrefilter::Level level;
+        level.alpha = rungAlpha(rung);
+        level.target = specularFine_.id();
+        level.mip = rungMip(rung);
+        level.size = (kFaceSize / 2) >> level.mip;
+        for (int ndf = 0; ndf < 2; ++ndf) level.layerFace[ndf] = 6 * rungCube(rung, ndf);
+        level.computedSize = computedFaceSize(level.alpha, level.size);
+        levels.push_back(level);
+    }
+    prefilter_->run(sourceCube_.id(), kFaceSize, levels, 0x3u);
 }
 
 void Environment::projectIrradiance() {
@@ -414,12 +455,13 @@ void Environment::bind(float intensity, float rotationDegrees) {
     EnvironmentUniforms u{};
     for (int i = 0; i < 9; ++i) u.sh[i] = glm::vec4(sh_[i], 0.0f);
     float radians = glm::radians(active_.kind == EnvironmentSpec::Kind::Procedural ? 0.0f : rotationDegrees);
-    u.params = {intensity, enabled_ ? 1.0f : 0.0f, float(kPrefilterLevels - 1), 0.0f};
+    u.params = {intensity, enabled_ ? 1.0f : 0.0f, float(kRungs - 1), kRungAlphaMin};
     u.rotation = {std::cos(radians), std::sin(radians), 0.0f, 0.0f};
     glNamedBufferSubData(uniforms_.id(), 0, sizeof(u), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBinding, uniforms_.id());
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     glBindTextureUnit(kEnvironmentSpecularUnit, enabled_ ? specular_.id() : 0);
+    glBindTextureUnit(kEnvironmentSpecularFineUnit, enabled_ ? specularFine_.id() : 0);
     glBindTextureUnit(kEnvironmentBrdfLutUnit, enabled_ ? brdfLut_.id() : 0);
     glBindTextureUnit(kEnvironmentSourceUnit, enabled_ ? sourceCube_.id() : 0);
 }
@@ -430,7 +472,8 @@ nlohmann::json Environment::stats() const {
     if (active_.kind == EnvironmentSpec::Kind::File) j["path"] = active_.path.string();
     if (enabled_) {
         j["face_size"] = kFaceSize;
-        j["prefilter_levels"] = kPrefilterLevels;
+        j["prefilter_rungs"] = kRungs;
+        j["prefilter_rung_alpha_min"] = kRungAlphaMin;
         j["prefilter_refine"] = CubePrefilter::kRefine;
         j["brdf_lut_size"] = kBrdfLutSize;
         j["precompute_ms"] = {{"load", timings_.loadMs},           {"cubemap", timings_.convertMs},

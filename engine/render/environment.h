@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -58,20 +59,35 @@ struct EnvironmentTimings {
 // The uniform block of shaders/common/ibl.glsl (std140, binding kEnvironmentBinding).
 struct EnvironmentUniforms {
     glm::vec4 sh[9];        // rgb: irradiance / pi as order-2 SH coefficients (already cosine-convolved)
-    glm::vec4 params;       // x intensity, y enabled (0/1), z last prefiltered level, w unused
+    glm::vec4 params;       // x intensity, y enabled (0/1), z kRungs - 1, w kRungAlphaMin
     glm::vec4 rotation;     // x cos, y sin of env.rotation (about +y)
 };
 static_assert(sizeof(EnvironmentUniforms) == 11 * 16);
 
 constexpr unsigned kEnvironmentBinding = BINDING_ENVIRONMENT;      // uniform block binding
-constexpr unsigned kEnvironmentSpecularUnit = UNIT_ENV_SPECULAR;   // samplerCubeArray: layer 0 GGX, layer 1 Beckmann
+constexpr unsigned kEnvironmentSpecularUnit = UNIT_ENV_SPECULAR;   // samplerCubeArray: rung 0 (unfiltered), layer = NDF
 constexpr unsigned kEnvironmentBrdfLutUnit = UNIT_ENV_BRDF_LUT;    // sampler2D: rg GGX (A, B), ba Beckmann (A, B)
 constexpr unsigned kEnvironmentSourceUnit = UNIT_ENV_SOURCE;       // samplerCube: unfiltered map with box mips (IBL modes)
+constexpr unsigned kEnvironmentSpecularFineUnit = UNIT_ENV_SPECULAR_FINE;   // samplerCubeArray: the sublevels
 
 class Environment {
 public:
     static constexpr int kFaceSize = 256;        // source cube face (level 0 of every map)
-    static constexpr int kPrefilterLevels = 6;   // 256 .. 8; level k holds roughness sqrt(alpha) = k / 5
+    // The specular lookup's roughness ladder: rung 0 is the unfiltered map (mirror reflections, the background),
+    // rungs 1 .. kRungs hold alpha = kRungAlphaMin x (1 / kRungAlphaMin)^((rung - 1) / (kRungs - 1)): 0.04 .. 1,
+    // each 1.24x the last, in a cube-map array of half the face size (specularFineArray), kSublevels rungs per
+    // mip: rung i at mip (i - 1) / kSublevels, cube ndf x kSublevels + (i - 1) % kSublevels. Finer than a mip chain
+    // (whose levels are 4x apart in alpha at the low end) so that a lookup between two rungs follows a small lamp
+    // (docs/environment.md, "Roughness ladder"); the roughest rungs keep 16 x 16 faces, not 8 x 8.
+    static constexpr int kRungs = 16;
+    static constexpr int kSublevels = 4;
+    static constexpr int kFineLevels = kRungs / kSublevels;   // 128 .. 16
+    static constexpr float kRungAlphaMin = 0.04f;
+    static float rungAlpha(int rung) {
+        return kRungAlphaMin * std::pow(1.0f / kRungAlphaMin, float(rung - 1) / float(kRungs - 1));
+    }
+    static int rungMip(int rung) { return (rung - 1) / kSublevels; }
+    static int rungCube(int rung, int ndf) { return ndf * kSublevels + (rung - 1) % kSublevels; }
     static constexpr int kBrdfLutSize = 64;
     static constexpr int kIrradianceFace = 32;   // source mip projected onto SH
 
@@ -91,9 +107,10 @@ public:
     // For tests: the GPU-side maps and the SH coefficients.
     GLuint sourceCube() const { return sourceCube_.id(); }
     GLuint specularCubeArray() const { return specular_.id(); }
+    // Rungs 1 .. kRungs (see kRungs).
+    GLuint specularFineArray() const { return specularFine_.id(); }
     GLuint brdfLut() const { return brdfLut_.id(); }
     const std::array<glm::vec3, 9>& irradianceSh() const { return sh_; }
-    static float levelAlpha(int level) { return CubePrefilter::levelAlpha(level, kPrefilterLevels); }
 
 private:
     // The disk cache key's parameters for `spec` ("" = do not cache: turned off, `none`, unreadable file).
@@ -108,7 +125,7 @@ private:
     std::filesystem::path shaderRoot_;
     gl::Program equirectProgram_, skyProgram_, lutProgram_;
     std::unique_ptr<CubePrefilter> prefilter_;   // shared with the reflection probes
-    gl::Texture sourceCube_, specular_, brdfLut_;
+    gl::Texture sourceCube_, specular_, specularFine_, brdfLut_;
     gl::Buffer uniforms_;
     std::array<glm::vec3, 9> sh_{};
     std::string activeKey_;

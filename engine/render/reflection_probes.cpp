@@ -225,7 +225,7 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
         for (int ndf = 0; ndf < 2; ++ndf)
             glCopyImageSubData(source_.id(), GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, array, GL_TEXTURE_CUBE_MAP_ARRAY, 0, 0, 0,
                                GLint(12 * p + 6 * ndf), size, size, 6);
-        prefilter_->run(source_.id(), size, array, kLevels, int(12 * p), ndfMask);
+        prefilter_->runMipChain(source_.id(), size, array, kLevels, int(12 * p), ndfMask);
     }
     glFinish();
     timings.prefilterMs = clock.elapsedMs();

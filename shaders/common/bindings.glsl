@@ -28,13 +28,14 @@
 #define UNIT_GBUFFER_BASE_COLOR_MASK 4
 #define UNIT_GBUFFER_DEPTH 5         // reversed-Z depth
 #define UNIT_GBUFFER_CLEARCOAT 30    // G-buffer colour target 5: coat normal (octahedral), coat factor, coat roughness
-#define UNIT_ENV_SPECULAR 6          // samplerCubeArray: prefiltered environment (layer = NDF)
+#define UNIT_ENV_SPECULAR 6          // samplerCubeArray: the unfiltered environment, layer = NDF (rung 0 of the ladder)
 #define UNIT_ENV_BRDF_LUT 7          // sampler2D: split-sum table
 #define UNIT_METHOD_FIRST 8          // glint methods: 8..15
 #define UNIT_METHOD_LAST 15
 #define UNIT_IBL_FIRST 16            // IBL modes: 16..23
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
+#define UNIT_ENV_SPECULAR_FINE 25    // samplerCubeArray: the prefiltered environment's sublevels (render/environment.h)
 #define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
 #define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
 #define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)

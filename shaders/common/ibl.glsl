@@ -13,14 +13,15 @@
 #include "common/bindings.glsl"
 #include "common/constants.glsl"
 
-layout(binding = UNIT_ENV_SPECULAR) uniform samplerCubeArray u_envSpecular;   // layer = NDF; level 0 = unfiltered source
+layout(binding = UNIT_ENV_SPECULAR) uniform samplerCubeArray u_envSpecular;   // layer = NDF; one level: the unfiltered map
 layout(binding = UNIT_ENV_BRDF_LUT) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
 layout(binding = UNIT_ENV_SOURCE) uniform samplerCube u_envSource;          // unfiltered map, box-filtered mip chain (IBL modes)
+layout(binding = UNIT_ENV_SPECULAR_FINE) uniform samplerCubeArray u_envSpecularFine;   // sublevels (envRung)
 
 // Mirrors EnvironmentUniforms in engine/render/environment.h (std140).
 layout(std140, binding = BINDING_ENVIRONMENT) uniform EnvironmentBlock {
     vec4 u_envSh[9];      // rgb: irradiance / pi, cosine-convolved SH coefficients
-    vec4 u_envParams;     // x intensity, y enabled, z last prefiltered level, w unused
+    vec4 u_envParams;     // x intensity, y enabled, z rungs - 1, w alpha of rung 1 (envPrefiltered)
     vec4 u_envRotation;   // x cos, y sin of env.rotation about +y
 };
 
@@ -37,7 +38,8 @@ layout(std140, binding = BINDING_PROBES) uniform ProbeBlock {
     vec4 u_probeParams;  // x count, y last prefiltered level
     GpuProbe u_probes[8];
 };
-// Premultiplied radiance (rgb) and coverage (a), layer = 2 * probe + NDF, same levels as u_envSpecular.
+// Premultiplied radiance (rgb) and coverage (a), layer = 2 * probe + NDF; level 0 unfiltered, level k holds
+// sqrt(alpha) = k / 5 (a mip chain, not the environment's ladder).
 layout(binding = UNIT_PROBE_SPECULAR) uniform samplerCubeArray u_probeSpecular;
 
 bool envEnabled() { return u_envParams.y > 0.5; }
@@ -74,24 +76,51 @@ vec3 envDiffuse(vec3 n) {
     return u_envParams.x * max(e, vec3(0.0));
 }
 
-// Prefiltered radiance around world direction r for NDF roughness alpha: level k holds sqrt(alpha) = k / last.
-// Between two levels the two lookups are blended geometrically (linearly in log radiance), not linearly as
-// trilinear filtering would: a tiny bright lamp that only the wider level's lobe reaches grows with roughness
-// roughly as exp(-c / alpha^2) (Beckmann) or alpha^2 (GGX tails), so a linear blend takes in far too much of it
-// (studio_small_03, Beckmann, worst pixel against quadrature at the exact alpha: 76x trilinear, 0.9x geometric at
-// alpha 0.05; 7.9x and 3.2x at 0.1; docs/environment.md); on the other shared maps the two differ by a few
-// percent. Deviation from Karis 2013 (trilinear), for that accuracy; costs a second cube fetch per pixel.
+// One rung of the roughness ladder (render/environment.h, kRungs): rung 0 is the unfiltered map, rung i >= 1 holds
+// alpha = alphaMin x (1 / alphaMin)^((i - 1) / (rungs - 1)), in the fine array at mip (i - 1) / 4, cube
+// ndf x 4 + (i - 1) % 4.
+const int ENV_RUNGS_PER_MIP = 4;   // Environment::kSublevels
+vec3 envRung(vec3 direction, int rung, int ndf) {
+    if (rung == 0) return textureLod(u_envSpecular, vec4(direction, float(ndf)), 0.0).rgb;
+    int i = rung - 1;
+    return textureLod(u_envSpecularFine, vec4(direction, float(ndf * ENV_RUNGS_PER_MIP + i % ENV_RUNGS_PER_MIP)),
+                      float(i / ENV_RUNGS_PER_MIP)).rgb;
+}
+
+// Prefiltered radiance around world direction r for NDF roughness alpha, from the rungs around it. The rungs are
+// 1.24x apart in alpha (a mip chain's levels were 4x apart at the low end) and are combined in log radiance, not
+// linearly as trilinear filtering would: a small bright lamp that only the wider lobe reaches grows with
+// roughness roughly as exp(-c / alpha^2) (Beckmann) or alpha^2 (GGX tails), so a linear blend takes in far too
+// much of it (studio_small_03, Beckmann, alpha 0.05, worst pixel against quadrature between the old levels: 71x
+// trilinear, 0.9x geometric; docs/environment.md). Deviation from Karis 2013 (trilinear over the mip chain), for
+// that accuracy; costs three cube fetches per pixel.
 vec3 envPrefiltered(vec3 r, float alpha, int ndf) {
-    float lod = sqrt(clamp(alpha, 0.0, 1.0)) * u_envParams.z;
-    float lower = min(floor(lod), max(u_envParams.z - 1.0, 0.0));
-    float t = clamp(lod - lower, 0.0, 1.0);
+    float steps = u_envParams.z, alphaMin = u_envParams.w;   // rungs - 1, alpha of rung 1
+    alpha = clamp(alpha, 0.0, 1.0);
     vec3 direction = envDirection(r);
-    vec3 a = textureLod(u_envSpecular, vec4(direction, float(ndf)), lower).rgb;
-    vec3 b = textureLod(u_envSpecular, vec4(direction, float(ndf)), lower + 1.0).rgb;
-    // A floor far below the pair's radiance keeps log finite and lets a black texel blend towards its neighbour.
-    vec3 floorValue = 1e-4 * max(a, b) + 1e-12;
-    vec3 blended = exp(mix(log(a + floorValue), log(b + floorValue), t)) - floorValue;
-    return u_envParams.x * max(blended, vec3(0.0));
+    if (alpha < alphaMin) {
+        // Between the mirror and rung 1: geometric blend along sqrt(alpha), as between a mip chain's levels.
+        float t = sqrt(alpha / alphaMin);
+        vec3 a = envRung(direction, 0, ndf), b = envRung(direction, 1, ndf);
+        vec3 floorValue = 1e-4 * max(a, b) + 1e-12;
+        return u_envParams.x * max(exp(mix(log(a + floorValue), log(b + floorValue), t)) - floorValue, vec3(0.0));
+    }
+    // Position on the ladder, linear in log alpha; a quadratic in (log alpha, log L) through the two rungs around it
+    // and the next one (the one below at the top), clamped to the pair's range: a lamp's log radiance is smooth in
+    // log alpha, and a straight line through the pair missed its curvature by up to 29% (docs/environment.md).
+    float position = 1.0 + steps * log(alpha / alphaMin) / log(1.0 / alphaMin);
+    float lower = clamp(floor(position), 1.0, steps);   // rung below, so lower + 1 <= rungs
+    float third = lower + 2.0 <= steps + 1.0 ? lower + 2.0 : lower - 1.0;
+    vec3 a = envRung(direction, int(lower), ndf);
+    vec3 b = envRung(direction, int(lower) + 1, ndf);
+    vec3 c = envRung(direction, int(third), ndf);
+    float u = position, ua = lower, ub = lower + 1.0, uc = third;   // rung index is linear in log alpha
+    float wa = (u - ub) * (u - uc) / ((ua - ub) * (ua - uc));
+    float wb = (u - ua) * (u - uc) / ((ub - ua) * (ub - uc));
+    float wc = (u - ua) * (u - ub) / ((uc - ua) * (uc - ub));
+    vec3 floorValue = 1e-4 * max(max(a, b), c) + 1e-12;
+    vec3 logL = wa * log(a + floorValue) + wb * log(b + floorValue) + wc * log(c + floorValue);
+    return u_envParams.x * max(clamp(exp(logL) - floorValue, min(a, b), max(a, b)), vec3(0.0));
 }
 
 // Split-sum (A, B) for n.v and alpha.

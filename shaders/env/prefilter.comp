@@ -24,11 +24,11 @@ layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x soli
 layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one level, all layers
 layout(location = 0) uniform int u_size;          // face size of the target level
 layout(location = 1) uniform float u_alpha;
-layout(location = 2) uniform int u_ndf;           // also the target layer
+layout(location = 2) uniform int u_ndf;           // 0 GGX, 1 Beckmann
 layout(location = 3) uniform int u_rootMip;       // source mip whose texels are the quadtree's roots
 layout(location = 4) uniform int u_sourceSize;    // face size of source level 0
 layout(location = 5) uniform float u_refine;      // split while texel width > u_refine x max(angle, lobe width)
-layout(location = 6) uniform int u_firstLayer;    // layer of face 0 of NDF 0 (probes: 12 per probe)
+layout(location = 6) uniform int u_targetLayerFace;   // layer-face of face 0 in the target
 layout(location = 7) uniform float u_horizonWidth;   // texels wider than this are split on the horizon
 
 // Weight of direction l for the lobe around r: D(h) (n.l) with n = r (0 behind the surface).
@@ -46,7 +46,9 @@ void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     if (id.x >= u_size || id.y >= u_size) return;
     vec3 r = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
-    float lobeWidth = 2.0 * u_alpha;
+    // Capped so that the widest lobes still split their root texels near the axis: with 0.5 rad leaves the
+    // midpoint rule left a constant map 1% off at alpha 0.5.
+    float lobeWidth = min(2.0 * u_alpha, 0.6);
     // D at theta_h = 45 degrees (l on the horizon of n = r) against D at the peak.
     float horizonShare = D_smooth(vec3(0.0, 0.0, sqrt(0.5)), u_alpha, u_ndf) / D_smooth(vec3(0.0, 0.0, 1.0), u_alpha, u_ndf);
     bool splitHorizon = horizonShare > 0.001;
@@ -72,10 +74,12 @@ void main() {
             // u_horizonWidth, for lobes that still weigh something there (wide GGX and Beckmann lobes).
             // Beckmann's tail falls as exp(-tan^2(theta_h) / alpha^2): its log-slope per radian of l is
             // g = tan(theta_h) (1 + tan^2) / alpha^2, far steeper than GGX's 4 / angle, so there the feature size is
-            // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge. Not for the narrowest
-            // level (alpha 0.04): it doubled that level's cost and took its worst error only from 5% to 1.6%.
+            // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge. Not for the two
+            // narrowest rungs (alpha 0.04, 0.05, filtered at 64 x 64): it doubled their cost and took the worst
+            // error only from 5% to 1.6%; from alpha 0.06 (32 x 32) it is needed (studio_small_03: 15% off at
+            // alpha 0.09 without).
             float feature = angle;
-            if (u_ndf == NDF_BECKMANN && u_alpha >= 0.1 && angle > lobeWidth) {
+            if (u_ndf == NDF_BECKMANN && u_alpha > 0.05 && angle > lobeWidth) {
                 float t = tan(0.5 * angle);
                 float g = t * (1.0 + t * t) / (u_alpha * u_alpha);
                 float nearEdge = max(angle - 0.75 * width, 0.0);
@@ -96,5 +100,5 @@ void main() {
         }
     }
     vec4 radiance = weight > 0.0 ? sum / weight : vec4(0.0);
-    imageStore(u_target, ivec3(id.xy, u_firstLayer + u_ndf * 6 + id.z), radiance);
+    imageStore(u_target, ivec3(id.xy, u_targetLayerFace + id.z), radiance);
 }
