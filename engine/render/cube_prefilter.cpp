@@ -14,6 +14,7 @@ constexpr float kHorizonWidth = 2.0f / 16.0f;
 // 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), they
 // cost four times less, and the upsampling moved the worst texel against quadrature by under 1% (docs/environment.md).
 constexpr int kHalfResolutionLevels = 2;
+constexpr int kLobeAlphas = 4;     // roughnesses per walk of shaders/env/prefilter.comp (u_alphas)
 int groups(int size) { return (size + kLocalSize - 1) / kLocalSize; }
 int mipCount(int size) {
     int levels = 1;
@@ -77,44 +78,64 @@ void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& l
     gl::Texture sourceLayers(layers);
     buildSums(sourceLayers.id(), faceSize);
 
-    gl::Texture scratch;   // levels computed below their size: one cube per NDF
+    gl::Texture scratch;   // groups computed below their size: one cube per lobe (NDF x 4 + i)
     int scratchSize = 0;
-    for (const Level& level : levels) {
-        int computed = level.computedSize > 0 ? std::min(level.computedSize, level.size) : level.size;
-        bool half = computed < level.size;   // upsampled from a scratch array
+    auto computedOf = [](const Level& level) {
+        return level.computedSize > 0 ? std::min(level.computedSize, level.size) : level.size;
+    };
+    for (size_t first = 0; first < levels.size();) {
+        // A group: up to kLobeAlphas consecutive levels into the same mip at the same computed size share one walk.
+        size_t end = first + 1;
+        while (end < levels.size() && end - first < size_t(kLobeAlphas) && levels[end].target == levels[first].target &&
+               levels[end].mip == levels[first].mip && levels[end].size == levels[first].size &&
+               computedOf(levels[end]) == computedOf(levels[first]))
+            ++end;
+        const Level& lead = levels[first];
+        int count = int(end - first);
+        int computed = computedOf(lead);
+        bool half = computed < lead.size;   // upsampled from the scratch array
         if (half && scratchSize != computed) {
             GLuint array = 0;
             glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
             scratch = gl::Texture(array);
-            glTextureStorage3D(array, 1, GL_RGBA32F, computed, computed, 12);
+            glTextureStorage3D(array, 1, GL_RGBA32F, computed, computed, 6 * 2 * kLobeAlphas);
             glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
             glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
             glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
             glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
             scratchSize = computed;
         }
+        float alphas[kLobeAlphas] = {};
+        GLint layerFaces[2 * kLobeAlphas] = {};
+        for (int i = 0; i < count; ++i) {
+            alphas[i] = levels[first + i].alpha;
+            for (int ndf = 0; ndf < 2; ++ndf)
+                layerFaces[ndf * kLobeAlphas + i] =
+                    half ? 6 * (ndf * kLobeAlphas + i) : levels[first + i].layerFace[ndf];
+        }
         program_.use();
         glBindTextureUnit(0, weighted_.id());
         glBindTextureUnit(1, centroids_.id());
+        if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        else glBindImageTexture(0, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glUniform1i(0, computed);
+        glUniform4fv(1, 1, alphas);
+        glUniform1i(2, GLint(ndfMask & 3u));
         glUniform1i(3, rootMip(faceSize));
         glUniform1i(4, faceSize);
         glUniform1f(5, kRefine);
-        glUniform1f(7, kHorizonWidth);
-        if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        else glBindImageTexture(0, level.target, level.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glUniform1i(0, computed);
-        glUniform1f(1, level.alpha);
-        for (int ndf = 0; ndf < 2; ++ndf) {
-            if (!(ndfMask & (1u << ndf))) continue;
-            glUniform1i(2, ndf);
-            glUniform1i(6, half ? 6 * ndf : level.layerFace[ndf]);
-            glDispatchCompute(groups(computed), groups(computed), 6);
-        }
+        glUniform4iv(6, 2, layerFaces);
+        glUniform1f(8, kHorizonWidth);
+        glUniform1i(9, count);
+        glDispatchCompute(groups(computed), groups(computed), 6);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        if (!half) continue;
-        for (int ndf = 0; ndf < 2; ++ndf)
-            if (ndfMask & (1u << ndf))
-                resample(scratch.id(), ndf, 0, level.target, level.mip, level.size, level.layerFace[ndf]);
+        if (half)
+            for (int i = 0; i < count; ++i)
+                for (int ndf = 0; ndf < 2; ++ndf)
+                    if (ndfMask & (1u << ndf))
+                        resample(scratch.id(), ndf * kLobeAlphas + i, 0, lead.target, lead.mip, lead.size,
+                                 levels[first + i].layerFace[ndf]);
+        first = end;
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -39,7 +39,8 @@ public:
         int computedSize = 0;   // 0: size
     };
     // Filters every level for each NDF with bit (1 << ndf) set in `ndfMask`. `source` is a cube map with a full
-    // mip chain of faceSize faces. Ends with the image/texture barrier.
+    // mip chain of faceSize faces. Up to four consecutive levels with the same target, mip and computed size (in
+    // ascending alpha) share one walk of the quadtree. Ends with the image/texture barrier.
     void run(GLuint source, int faceSize, const std::vector<Level>& levels, unsigned ndfMask);
     // Levels 1 .. levels-1 of `target` (a cube-map array whose level 0 has the source's face size, level k holding
     // sqrt(alpha) = k / (levels - 1)) at layer-faces firstLayer + 6 * ndf; level 0 is left to the caller.

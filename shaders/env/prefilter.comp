@@ -1,4 +1,4 @@
-// Prefiltered specular radiance for one roughness level (split sum, Karis 2013, Eq. 3 with n = v = r):
+// Prefiltered specular radiance for up to 4 roughnesses x 2 NDFs at once (split sum, Karis 2013, Eq. 3 with n = v = r):
 //   L(r) = integral L(l) D(h) (n.l) dl / integral D(h) (n.l) dl,   h = normalize(l + r)
 // for the NDF of this layer (0 GGX, 1 Beckmann), by quadrature over the texels of the source cube's mips rather
 // than by sampling. Each target texel walks a quadtree over the source: the 4 x 4 texels of each face of a coarse
@@ -16,45 +16,62 @@
 // (docs/environment.md, "Prefiltered levels").
 // All four channels are filtered: a reflection probe's alpha is its coverage by geometry (sky texels 0), which the
 // lighting pass blends with the distant environment (render/reflection_probes.h); the environment's alpha is 1.
+// One walk serves every lobe of a dispatch (the rungs of one mip, both NDFs): it is refined for the narrowest lobe
+// and for the Beckmann tails and horizons of all of them, and each leaf is weighted once per lobe; the walk, not
+// the weighting, is the cost, so this is 3-4x cheaper than a walk per lobe and no less accurate for any of them.
 #include "env/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(binding = 0) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
 layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
-layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one level, all layers
-layout(location = 0) uniform int u_size;          // face size of the target level
-layout(location = 1) uniform float u_alpha;
-layout(location = 2) uniform int u_ndf;           // 0 GGX, 1 Beckmann
+layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one mip, all layers
+layout(location = 0) uniform int u_size;          // face size of the target
+layout(location = 1) uniform vec4 u_alphas;       // the dispatch's roughnesses, ascending; u_count of them
+layout(location = 2) uniform int u_ndfMask;       // bit 0 GGX, bit 1 Beckmann
 layout(location = 3) uniform int u_rootMip;       // source mip whose texels are the quadtree's roots
 layout(location = 4) uniform int u_sourceSize;    // face size of source level 0
 layout(location = 5) uniform float u_refine;      // split while texel width > u_refine x max(angle, lobe width)
-layout(location = 6) uniform int u_targetLayerFace;   // layer-face of face 0 in the target
-layout(location = 7) uniform float u_horizonWidth;   // texels wider than this are split on the horizon
+layout(location = 6) uniform ivec4 u_layerFaces[2];   // [ndf][i]: target layer-face of face 0 for lobe (ndf, i)
+layout(location = 8) uniform float u_horizonWidth;   // texels wider than this are split on the horizon
+layout(location = 9) uniform int u_count;
+
+const int MAX_LOBES = 8;   // 2 NDFs x 4 roughnesses
 
 // Weight of direction l for the lobe around r: D(h) (n.l) with n = r (0 behind the surface).
-float lobeWeight(vec3 l, vec3 r) {
+float lobeWeight(vec3 l, vec3 r, float alpha, int ndf) {
     float nDotL = dot(l, r);
     if (nDotL <= 0.0) return 0.0;
     float cosH = sqrt(0.5 * (1.0 + nDotL));   // h = normalize(l + r): cos(theta_h) = cos(theta_l / 2)
-    return D_smooth(vec3(0.0, 0.0, cosH), u_alpha, u_ndf) * nDotL;
+    return D_smooth(vec3(0.0, 0.0, cosH), alpha, ndf) * nDotL;
 }
 
 // Node of the walk: face 3 bits, mip 4 bits, x and y 12 bits each.
 int packNode(int face, int mip, int x, int y) { return face | (mip << 3) | (x << 7) | (y << 19); }
+
+bool hasNdf(int ndf) { return (u_ndfMask & (1 << ndf)) != 0; }
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     if (id.x >= u_size || id.y >= u_size) return;
     vec3 r = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
     // Capped so that the widest lobes still split their root texels near the axis: with 0.5 rad leaves the
-    // midpoint rule left a constant map 1% off at alpha 0.5.
-    float lobeWidth = min(2.0 * u_alpha, 0.6);
-    // D at theta_h = 45 degrees (l on the horizon of n = r) against D at the peak.
-    float horizonShare = D_smooth(vec3(0.0, 0.0, sqrt(0.5)), u_alpha, u_ndf) / D_smooth(vec3(0.0, 0.0, 1.0), u_alpha, u_ndf);
-    bool splitHorizon = horizonShare > 0.001;
+    // midpoint rule left a constant map 1% off at alpha 0.5. The narrowest lobe sets it.
+    float lobeWidth = min(2.0 * u_alphas.x, 0.6);
+    // D at theta_h = 45 degrees (l on the horizon of n = r) against D at the peak, for the widest lobe.
+    bool splitHorizon = false;
+    float widest = u_alphas[u_count - 1];
+    for (int ndf = 0; ndf < 2; ++ndf)
+        if (hasNdf(ndf))
+            splitHorizon = splitHorizon || D_smooth(vec3(0.0, 0.0, sqrt(0.5)), widest, ndf) /
+                                               D_smooth(vec3(0.0, 0.0, 1.0), widest, ndf) > 0.001;
+    bool beckmannTails = hasNdf(NDF_BECKMANN) && u_alphas[u_count - 1] > 0.05;
     int rootSize = max(u_sourceSize >> u_rootMip, 1);
-    vec4 sum = vec4(0.0);
-    float weight = 0.0;
+    vec4 sum[MAX_LOBES];
+    float weight[MAX_LOBES];
+    for (int k = 0; k < MAX_LOBES; ++k) {
+        sum[k] = vec4(0.0);
+        weight[k] = 0.0;
+    }
     int stack[64];
     for (int root = 0; root < 6 * rootSize * rootSize; ++root) {
         int rootFace = root / (rootSize * rootSize);
@@ -74,17 +91,22 @@ void main() {
             // u_horizonWidth, for lobes that still weigh something there (wide GGX and Beckmann lobes).
             // Beckmann's tail falls as exp(-tan^2(theta_h) / alpha^2): its log-slope per radian of l is
             // g = tan(theta_h) (1 + tan^2) / alpha^2, far steeper than GGX's 4 / angle, so there the feature size is
-            // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge. Not for the two
-            // narrowest rungs (alpha 0.04, 0.05, filtered at 64 x 64): it doubled their cost and took the worst
-            // error only from 5% to 1.6%; from alpha 0.06 (32 x 32) it is needed (studio_small_03: 15% off at
-            // alpha 0.09 without).
+            // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge (the strictest
+            // over the dispatch's Beckmann lobes). Not for the two narrowest rungs (alpha 0.04, 0.05, filtered at
+            // 64 x 64): it doubled their cost and took the worst error only from 5% to 1.6%; from alpha 0.06
+            // (32 x 32) it is needed (studio_small_03: 15% off at alpha 0.09 without).
             float feature = angle;
-            if (u_ndf == NDF_BECKMANN && u_alpha > 0.05 && angle > lobeWidth) {
+            if (beckmannTails && angle > lobeWidth) {
                 float t = tan(0.5 * angle);
-                float g = t * (1.0 + t * t) / (u_alpha * u_alpha);
                 float nearEdge = max(angle - 0.75 * width, 0.0);
                 float tNear = tan(0.5 * nearEdge);
-                if (exp(-tNear * tNear / (u_alpha * u_alpha)) > 1e-4) feature = min(feature, 4.0 / g);
+                for (int i = 0; i < u_count; ++i) {
+                    float alpha = u_alphas[i];
+                    if (alpha <= 0.05) continue;
+                    if (exp(-tNear * tNear / (alpha * alpha)) <= 1e-4) continue;
+                    float g = t * (1.0 + t * t) / (alpha * alpha);
+                    feature = min(feature, 4.0 / g);
+                }
             }
             bool nearLobe = width > u_refine * max(feature, lobeWidth);
             bool onHorizon = splitHorizon && abs(cosAngle) < 0.75 * width && width > u_horizonWidth;
@@ -95,10 +117,22 @@ void main() {
             float texels = float(1 << (2 * mip));   // level-0 texels per mip-m texel: the box mean x this = the sum
             vec4 where = texelFetch(u_centroid, ivec3(x, y, face), mip);
             vec3 from = dot(where.rgb, where.rgb) > 0.0 ? normalize(where.rgb) : centre;
-            sum += texelFetch(u_weighted, ivec3(x, y, face), mip) * (lobeWeight(from, r) * texels);
-            weight += lobeWeight(centre, r) * (where.a * texels);
+            vec4 radiance = texelFetch(u_weighted, ivec3(x, y, face), mip) * texels;
+            float solidAngle = where.a * texels;
+            // Constant loop bounds: with the bounds u_count and the NDF mask, llvmpipe (Mesa 22) left some texels of
+            // some lobes at 0 (rungs 6-8, 2026-12-04).
+            for (int k = 0; k < MAX_LOBES; ++k) {
+                int ndf = k / 4, i = k % 4;
+                if (!hasNdf(ndf) || i >= u_count) continue;
+                sum[k] += radiance * lobeWeight(from, r, u_alphas[i], ndf);
+                weight[k] += lobeWeight(centre, r, u_alphas[i], ndf) * solidAngle;
+            }
         }
     }
-    vec4 radiance = weight > 0.0 ? sum / weight : vec4(0.0);
-    imageStore(u_target, ivec3(id.xy, u_targetLayerFace + id.z), radiance);
+    for (int k = 0; k < MAX_LOBES; ++k) {
+        int ndf = k / 4, i = k % 4;
+        if (!hasNdf(ndf) || i >= u_count) continue;
+        vec4 radiance = weight[k] > 0.0 ? sum[k] / weight[k] : vec4(0.0);
+        imageStore(u_target, ivec3(id.xy, u_layerFaces[ndf][i] + id.z), radiance);
+    }
 }
