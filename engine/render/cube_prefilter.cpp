@@ -24,7 +24,9 @@ int mipCount(int size) {
 }  // namespace
 
 CubePrefilter::CubePrefilter(const std::filesystem::path& shaderRoot)
-    : program_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "env/prefilter.comp"}}}),
+    : program1_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "env/prefilter.comp"}}, {"LOBE_ALPHAS 1"}}),
+      program2_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "env/prefilter.comp"}}, {"LOBE_ALPHAS 2"}}),
+      program4_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "env/prefilter.comp"}}, {"LOBE_ALPHAS 4"}}),
       resampleProgram_(shaderRoot, {"env/resample_cube", {{GL_COMPUTE_SHADER, "env/resample_cube.comp"}}}),
       sumsProgram_(shaderRoot, {"env/radiance_centroid", {{GL_COMPUTE_SHADER, "env/radiance_centroid.comp"}}}) {}
 
@@ -113,7 +115,8 @@ void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& l
                 layerFaces[ndf * kLobeAlphas + i] =
                     half ? 6 * (ndf * kLobeAlphas + i) : levels[first + i].layerFace[ndf];
         }
-        program_.use();
+        gl::Program& program = count == 1 ? program1_ : count == 2 ? program2_ : program4_;
+        program.use();
         glBindTextureUnit(0, weighted_.id());
         glBindTextureUnit(1, centroids_.id());
         if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);

@@ -54,7 +54,8 @@ private:
     // Fills the two sum chains (level 0 from the source, then box mips) for a faceSize source.
     void buildSums(GLuint sourceLayers, int faceSize);
 
-    gl::Program program_, resampleProgram_, sumsProgram_;
+    // The walk compiled for 1, 2 and 4 roughnesses per dispatch (LOBE_ALPHAS).
+    gl::Program program1_, program2_, program4_, resampleProgram_, sumsProgram_;
     gl::Texture weighted_;    // 2D array, 6 layers: radiance x solid angle
     gl::Texture centroids_;   // 2D array, 6 layers: rgb luminance x solid angle x direction, a solid angle
     int sumsSize_ = 0;

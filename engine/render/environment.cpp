@@ -50,10 +50,10 @@ gl::Texture createSourceCube() {
     return gl::Texture(cube);
 }
 
-gl::Texture createSpecularArray() {
+gl::Texture createCubeArray(int levels, int faceSize, int cubes) {
     GLuint array = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    glTextureStorage3D(array, 1, GL_RGBA32F, Environment::kFaceSize, Environment::kFaceSize, 6 * 2);
+    glTextureStorage3D(array, levels, GL_RGBA32F, faceSize, faceSize, 6 * cubes);
     glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -61,16 +61,12 @@ gl::Texture createSpecularArray() {
     return gl::Texture(array);
 }
 
+// Rung 0: the unfiltered map, one cube per NDF (the lookups index the layer by NDF).
+gl::Texture createSpecularArray() { return createCubeArray(1, Environment::kFaceSize, 2); }
+
+// Rungs 1 .. kRungs (Environment::kRungs).
 gl::Texture createSpecularFineArray() {
-    GLuint array = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    glTextureStorage3D(array, Environment::kFineLevels, GL_RGBA32F, Environment::kFaceSize / 2,
-                       Environment::kFaceSize / 2, 6 * 2 * Environment::kSublevels);
-    glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return gl::Texture(array);
+    return createCubeArray(Environment::kFineLevels, Environment::kFaceSize / 2, 2 * Environment::kSublevels);
 }
 
 gl::Texture createBrdfLut() {

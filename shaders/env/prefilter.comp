@@ -26,7 +26,7 @@ layout(binding = 0) uniform sampler2DArray u_weighted;   // radiance x solid ang
 layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
 layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one mip, all layers
 layout(location = 0) uniform int u_size;          // face size of the target
-layout(location = 1) uniform vec4 u_alphas;       // the dispatch's roughnesses, ascending; u_count of them
+layout(location = 1) uniform vec4 u_alphas;       // the dispatch's roughnesses, ascending; u_count <= LOBE_ALPHAS
 layout(location = 2) uniform int u_ndfMask;       // bit 0 GGX, bit 1 Beckmann
 layout(location = 3) uniform int u_rootMip;       // source mip whose texels are the quadtree's roots
 layout(location = 4) uniform int u_sourceSize;    // face size of source level 0
@@ -35,7 +35,11 @@ layout(location = 6) uniform ivec4 u_layerFaces[2];   // [ndf][i]: target layer-
 layout(location = 8) uniform float u_horizonWidth;   // texels wider than this are split on the horizon
 layout(location = 9) uniform int u_count;
 
-const int MAX_LOBES = 8;   // 2 NDFs x 4 roughnesses
+// LOBE_ALPHAS (1, 2 or 4, defined by render/cube_prefilter.cpp) sizes the per-lobe registers: a single-lobe
+// dispatch compiled for 4 roughnesses ran 2.5x slower on llvmpipe (the probes' prefilter).
+#ifndef LOBE_ALPHAS
+#define LOBE_ALPHAS 4
+#endif
 
 // Weight of direction l for the lobe around r: D(h) (n.l) with n = r (0 behind the surface).
 float lobeWeight(vec3 l, vec3 r, float alpha, int ndf) {
@@ -66,12 +70,16 @@ void main() {
                                                D_smooth(vec3(0.0, 0.0, 1.0), widest, ndf) > 0.001;
     bool beckmannTails = hasNdf(NDF_BECKMANN) && u_alphas[u_count - 1] > 0.05;
     int rootSize = max(u_sourceSize >> u_rootMip, 1);
-    vec4 sum[MAX_LOBES];
-    float weight[MAX_LOBES];
-    for (int k = 0; k < MAX_LOBES; ++k) {
-        sum[k] = vec4(0.0);
-        weight[k] = 0.0;
+    // Per NDF, per roughness; the NDF explicit and the loops of constant length LOBE_ALPHAS, so that the arrays
+    // stay in registers (llvmpipe: 8 lobes indexed through one array left some texels at 0, and one lobe compiled
+    // that way ran 1.5x slower than this).
+    vec4 sumGgx[LOBE_ALPHAS], sumBeckmann[LOBE_ALPHAS];
+    float weightGgx[LOBE_ALPHAS], weightBeckmann[LOBE_ALPHAS];
+    for (int i = 0; i < LOBE_ALPHAS; ++i) {
+        sumGgx[i] = sumBeckmann[i] = vec4(0.0);
+        weightGgx[i] = weightBeckmann[i] = 0.0;
     }
+    bool ggx = hasNdf(NDF_GGX), beckmann = hasNdf(NDF_BECKMANN);
     int stack[64];
     for (int root = 0; root < 6 * rootSize * rootSize; ++root) {
         int rootFace = root / (rootSize * rootSize);
@@ -119,20 +127,26 @@ void main() {
             vec3 from = dot(where.rgb, where.rgb) > 0.0 ? normalize(where.rgb) : centre;
             vec4 radiance = texelFetch(u_weighted, ivec3(x, y, face), mip) * texels;
             float solidAngle = where.a * texels;
-            // Constant loop bounds: with the bounds u_count and the NDF mask, llvmpipe (Mesa 22) left some texels of
-            // some lobes at 0 (rungs 6-8, 2026-12-04).
-            for (int k = 0; k < MAX_LOBES; ++k) {
-                int ndf = k / 4, i = k % 4;
-                if (!hasNdf(ndf) || i >= u_count) continue;
-                sum[k] += radiance * lobeWeight(from, r, u_alphas[i], ndf);
-                weight[k] += lobeWeight(centre, r, u_alphas[i], ndf) * solidAngle;
+            for (int i = 0; i < LOBE_ALPHAS; ++i) {
+                if (i >= u_count) continue;
+                if (ggx) {
+                    sumGgx[i] += radiance * lobeWeight(from, r, u_alphas[i], NDF_GGX);
+                    weightGgx[i] += lobeWeight(centre, r, u_alphas[i], NDF_GGX) * solidAngle;
+                }
+                if (beckmann) {
+                    sumBeckmann[i] += radiance * lobeWeight(from, r, u_alphas[i], NDF_BECKMANN);
+                    weightBeckmann[i] += lobeWeight(centre, r, u_alphas[i], NDF_BECKMANN) * solidAngle;
+                }
             }
         }
     }
-    for (int k = 0; k < MAX_LOBES; ++k) {
-        int ndf = k / 4, i = k % 4;
-        if (!hasNdf(ndf) || i >= u_count) continue;
-        vec4 radiance = weight[k] > 0.0 ? sum[k] / weight[k] : vec4(0.0);
-        imageStore(u_target, ivec3(id.xy, u_layerFaces[ndf][i] + id.z), radiance);
+    for (int i = 0; i < LOBE_ALPHAS; ++i) {
+        if (i >= u_count) continue;
+        if (ggx)
+            imageStore(u_target, ivec3(id.xy, u_layerFaces[NDF_GGX][i] + id.z),
+                       weightGgx[i] > 0.0 ? sumGgx[i] / weightGgx[i] : vec4(0.0));
+        if (beckmann)
+            imageStore(u_target, ivec3(id.xy, u_layerFaces[NDF_BECKMANN][i] + id.z),
+                       weightBeckmann[i] > 0.0 ? sumBeckmann[i] / weightBeckmann[i] : vec4(0.0));
     }
 }
