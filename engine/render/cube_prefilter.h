@@ -46,8 +46,8 @@ public:
     // sqrt(alpha) = k / (levels - 1)) at layer-faces firstLayer + 6 * ndf; level 0 is left to the caller.
     void runMipChain(GLuint source, int faceSize, GLuint target, int levels, int firstLayer, unsigned ndfMask);
     // Writes the faces of cube `sourceCube` of the cube-map array `source`, read at `sourceMip`, into `target`'s
-    // `mip` (faces `size` wide) at layer-face `targetLayerFace`, by seamless bilinear lookup at each target texel's centre: a 2x
-    // upsampling, or for a 2x downsampling exactly the box mean of the four texels under it.
+    // `mip` (faces `size` wide) at layer-face `targetLayerFace`, by seamless bilinear lookup at each target texel's
+    // centre: an upsampling, or for a 2x downsampling exactly the box mean of the four texels under it.
     void resample(GLuint source, int sourceCube, int sourceMip, GLuint target, int mip, int size, int targetLayerFace);
 
 private:

@@ -16,7 +16,7 @@
 layout(binding = UNIT_ENV_SPECULAR) uniform samplerCubeArray u_envSpecular;   // layer = NDF; one level: the unfiltered map
 layout(binding = UNIT_ENV_BRDF_LUT) uniform sampler2D u_envBrdfLut;           // (n.v, sqrt(alpha)) -> GGX (A, B), Beckmann (A, B)
 layout(binding = UNIT_ENV_SOURCE) uniform samplerCube u_envSource;          // unfiltered map, box-filtered mip chain (IBL modes)
-layout(binding = UNIT_ENV_SPECULAR_FINE) uniform samplerCubeArray u_envSpecularFine;   // sublevels (envRung)
+layout(binding = UNIT_ENV_SPECULAR_FINE) uniform samplerCubeArray u_envSpecularFine;   // rungs 1 .. 16 (envRung)
 
 // Mirrors EnvironmentUniforms in engine/render/environment.h (std140).
 layout(std140, binding = BINDING_ENVIRONMENT) uniform EnvironmentBlock {
@@ -79,7 +79,7 @@ vec3 envDiffuse(vec3 n) {
 // One rung of the roughness ladder (render/environment.h, kRungs): rung 0 is the unfiltered map, rung i >= 1 holds
 // alpha = alphaMin x (1 / alphaMin)^((i - 1) / (rungs - 1)), in the fine array at mip (i - 1) / 4, cube
 // ndf x 4 + (i - 1) % 4.
-const int ENV_RUNGS_PER_MIP = 4;   // Environment::kSublevels
+const int ENV_RUNGS_PER_MIP = 4;   // = Environment::kSublevels (else wrong rungs: SplitSumShadingMatchesCpu fails)
 vec3 envRung(vec3 direction, int rung, int ndf) {
     if (rung == 0) return textureLod(u_envSpecular, vec4(direction, float(ndf)), 0.0).rgb;
     int i = rung - 1;
