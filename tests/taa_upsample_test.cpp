@@ -7,7 +7,8 @@
 //       those of the internal pixel in both: a native-resolution render has other glints by construction);
 //   (c) no NaN / Inf in any image;
 //   (d) a render-scale change mid-sequence keeps the history (no reset) and the image (mean luminance);
-//   (e) the window at render_scale 0.5 with aa=taa shows the TAAU image (not the Catmull-Rom upscale).
+//   (e) the window at render_scale 0.5 with aa=taa shows the TAAU image (not the Catmull-Rom upscale);
+//   (f) taa.upsample=0 gives exactly the Catmull-Rom upscale of the TAA render at the internal size.
 // With GLIMMER_IMAGE_MEASURE=1 the edge test also prints the table of docs/image.md (render_scale 0.5 and 0.25,
 // no-AA + upscale, TAA at the internal size + upscale, TAAU) and the pass costs at 640x360.
 #include <gtest/gtest.h>
@@ -246,6 +247,54 @@ TEST(ImageTaau, EdgesBeatTheSpatialUpscaleAndScaleChangesKeepTheHistory) {
     edgeErrors(session, request, reference, mask, 0.25f, 128, true);
     printPassCosts(session, request, 0.5f);
     printPassCosts(session, request, 0.25f);
+}
+
+double meanAbsDisplayDiff(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += std::abs(double(a[i]) - double(b[i]));
+    return a.empty() ? 0.0 : sum / double(a.size());
+}
+
+// taa.upsample=0 (the window's default on software renderers): TAA and the post passes at the render size, then
+// the Catmull-Rom upscale. The image must be the upscale of the TAA render at the internal size (same frames, each
+// from a reset history), and must differ from the TAAU image (so the comparison can fail).
+TEST(ImageTaau, UpsampleOffResolvesAtTheRenderSizeThenUpscales) {
+    RenderRequest request = atriumRequest(192, 108);
+    OffscreenSession session(request);
+    RenderRequest internal = request;
+    internal.width = 96;
+    internal.height = 54;
+    internal.settings.apply("aa=taa");
+    internal.frames = 8;
+    session.renderer().resetHistory();
+    RenderResult small = session.render(internal);
+    ASSERT_EQ(small.stats["upscale"], "none");
+    const std::vector<uint8_t> expected = catmullRomUpscale(small.display, 96, 54, 192, 108);
+
+    RenderRequest off = request;
+    off.renderScale = 0.5f;
+    off.settings.apply("aa=taa");
+    off.settings.apply("taa.upsample=0");
+    off.frames = 8;
+    session.renderer().resetHistory();
+    RenderResult resolvedSmall = session.render(off);
+    EXPECT_EQ(resolvedSmall.stats["upscale"], "catmull-rom");
+    EXPECT_EQ(session.renderer().targets().postWidth(), 96) << "the post passes must run at the render size";
+
+    RenderRequest on = off;
+    on.settings.apply("taa.upsample=1");
+    session.renderer().resetHistory();
+    RenderResult taau = session.render(on);
+    EXPECT_EQ(taau.stats["upscale"], "taa");
+    EXPECT_EQ(nonFinite(small) + nonFinite(resolvedSmall) + nonFinite(taau), 0u);
+
+    const double offError = meanAbsDisplayDiff(resolvedSmall.display, expected);
+    const double taauError = meanAbsDisplayDiff(taau.display, expected);
+    std::printf("  mean |display - upscale(TAA at 96x54)| (8-bit): taa.upsample=0 %.3f, TAAU %.3f\n", offError,
+                taauError);
+    // Measured: 0 (bit-identical on llvmpipe) and 1.7.
+    EXPECT_LT(offError, 0.05);
+    EXPECT_GT(taauError, 0.5);
 }
 
 // Over the glint pixels: bright = above the upscaled no-AA image's 99th percentile of the same pixels.

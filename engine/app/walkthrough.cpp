@@ -130,6 +130,12 @@ public:
         // And ambient occlusion at every second pixel (ao.half_res, docs/ambient_occlusion.md#half-resolution-aohalf_res).
         if (softwareRenderer_ && !options.screenshot && !settings.isSet("ao.half_res"))
             settings.apply("ao.half_res=1");
+        // And TAA resolved at the render size, its post passes (bloom, exposure, tone mapping) there too, with the
+        // window's Catmull-Rom upscale after them (taa.upsample=0): at scale 0.25 in a 1280x720 window the
+        // upsampling resolve and the post passes at the window's size took about half of the frame
+        // (docs/performance.md). GPUs keep TAA upsampling.
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet("taa.upsample"))
+            settings.apply("taa.upsample=0");
         renderer_ = std::make_unique<Renderer>(shaderRoot, settings);
         renderer_->setAsyncGpuTimers(true);
         uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);

@@ -265,7 +265,10 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     if (probesActive) probeUpdate = probes_->update(scene, gpuScene, environment_, settings_);
     targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
     // TAA upsampling: the history, the post passes and the display image at the output size.
-    const bool upsample = temporalAa && outputWidth_ >= width && outputHeight_ >= height &&
+    // taa.upsample=0 resolves at the render size (the post passes then run on 1 / scale^2 fewer pixels) and leaves
+    // the upscale to the caller.
+    const bool upsample = temporalAa && settings_.common_("taa.upsample") > 0.5f &&
+                          outputWidth_ >= width && outputHeight_ >= height &&
                           (outputWidth_ > width || outputHeight_ > height);
     const int postWidth = upsample ? outputWidth_ : width, postHeight = upsample ? outputHeight_ : height;
     targets_.resizePost(postWidth, postHeight);

@@ -60,6 +60,10 @@ const std::vector<CommonParam>& commonParams() {
         {{"taa.stable_glints", 1.0f, 0.0f, 1.0f,
           "aa=taa: 1 evaluates glints at the unjittered pixel centre (a still camera keeps each sparkle); 0 jittered",
           {}, true}},
+        {{"taa.upsample", 1.0f, 0.0f, 1.0f,
+          "aa=taa below render scale 1: 1 resolves to the output size (TAAU); 0 resolves at the render size and the "
+          "post passes run there, then a Catmull-Rom upscale (the window's default on software renderers)",
+          {}, true}},
         {{"taa.glint_feedback", 0.25f, 0.02f, 1.0f,
           "aa=taa: weight of the current frame in the glint history once converged (higher keeps sparkle peaks)"}},
         {{"bloom.strength", 0.0f, 0.0f, 1.0f, "bloom: weight of the blurred image mixed into the HDR image"}},
