@@ -122,7 +122,13 @@ void main() {
     s.n = normalize(normalAlpha.xyz);
     s.t = normalize(tangentMetallic.xyz - s.n * dot(s.n, tangentMetallic.xyz));
     s.b = duvdyMaterial.w * cross(s.n, s.t);
+#ifdef NON_GLINTY_PIXELS
+    // The pixels lighting_class.frag did not mark glinty (render/passes/lighting_pass.h): the compiler drops the
+    // method's code, and every other term is this shader's own.
+    const bool glinty = false;
+#else
     bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
+#endif
 
     const vec3 gbufferPosition = worldPosition(pixel, depth);
     vec3 position = gbufferPosition;
@@ -152,8 +158,13 @@ void main() {
     bool coated = coat.weight > 0.0;
     vec3 coatRadiance = vec3(0.0);
 
-    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7).
+    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
+    // non-glinty variant never reads it (its debug views are not split off: render/passes/lighting_pass.h).
+#ifdef NON_GLINTY_PIXELS
+    GlintPixel glint;
+#else
     GlintPixel glint = glintSetup(s);
+#endif
 
     // Environment lighting by the selected IBL mode (shaders/ibl/README.md), or the constant ambient when the
     // environment is off (--env none).

@@ -136,6 +136,12 @@ public:
         // (docs/performance.md). GPUs keep TAA upsampling.
         if (softwareRenderer_ && !options.screenshot && !settings.isSet("taa.upsample"))
             settings.apply("taa.upsample=0");
+        // And the geometry at the level of detail that keeps its error within a pixel of the render size
+        // (lod.pixel_error=1): the G-buffer's vertex work is serial on llvmpipe.
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet("lod.pixel_error"))
+            settings.apply("lod.pixel_error=1");
+        // Every window shades glinty and other pixels with separate programs (render/passes/lighting_pass.h).
+        if (!options.screenshot && !settings.isSet("lighting.split_glinty")) settings.apply("lighting.split_glinty=1");
         renderer_ = std::make_unique<Renderer>(shaderRoot, settings);
         renderer_->setAsyncGpuTimers(true);
         uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);

@@ -12,6 +12,7 @@ void PipelineState::apply() const {
     if (depthTest) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
     glDepthFunc(depthFunc);
     glDepthMask(depthWrite ? GL_TRUE : GL_FALSE);
+    glDepthRangef(depthRange.x, depthRange.y);
     if (cull) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
     glCullFace(cullFace);
     if (polygonOffset != glm::vec2(0.0f)) {

@@ -21,6 +21,8 @@ struct PipelineState {
     bool depthTest = false;
     GLenum depthFunc = GL_GREATER;   // reversed Z everywhere (clip control zero-to-one, depth cleared to 0)
     bool depthWrite = false;
+    // glDepthRange: (d, d) gives every fragment the depth d (the lighting pass's shading classes).
+    glm::vec2 depthRange{0.0f, 1.0f};
     bool cull = false;
     GLenum cullFace = GL_BACK;
     BlendState blend;

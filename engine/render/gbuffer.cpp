@@ -44,7 +44,12 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
                      gbuffer_[5].id()},
         depth_.id());
     hdr_ = gl::createTexture2D(GL_RGBA32F, width, height);
-    hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()});
+    shadingClass_ = gl::createTexture2D(GL_DEPTH_COMPONENT16, width, height);
+    shadingClassFbo_ = labelledFramebuffer("shading class");
+    glNamedFramebufferTexture(shadingClassFbo_.id(), GL_DEPTH_ATTACHMENT, shadingClass_.id(), 0);
+    glNamedFramebufferDrawBuffer(shadingClassFbo_.id(), GL_NONE);
+    checkComplete(shadingClassFbo_.id(), "shading class");
+    hdrFbo_ = gl::createFramebuffer("hdr", {hdr_.id()}, shadingClass_.id());
     if (postWasRenderSize || !display_) {
         postWidth_ = postHeight_ = 0;
         resizePost(width, height);   // the renderer asks for another post size when TAA upsamples
@@ -68,8 +73,8 @@ void FrameTargets::allocateGlintPost() {
     // RGBA32F: a micro-scale glint can exceed half-float range (one particle's radiance over a whole footprint).
     glintEnvironment_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
     glintLights_ = gl::createTexture2D(GL_RGBA32F, width_, height_);
-    lightingGlintFbo_ =
-        gl::createFramebuffer("lighting+glints", {hdr_.id(), glintEnvironment_.id(), glintLights_.id()});
+    lightingGlintFbo_ = gl::createFramebuffer("lighting+glints", {hdr_.id(), glintEnvironment_.id(), glintLights_.id()},
+                                              shadingClass_.id());
     attachGlintPart();
 }
 
@@ -79,6 +84,7 @@ void FrameTargets::allocateGlintPart() {
     lightingGlintPartFbo_ = labelledFramebuffer("lighting+glint part");
     glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT0, hdr_.id(), 0);
     glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_COLOR_ATTACHMENT3, glintPart_.id(), 0);
+    glNamedFramebufferTexture(lightingGlintPartFbo_.id(), GL_DEPTH_ATTACHMENT, shadingClass_.id(), 0);
     const GLenum drawBuffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(lightingGlintPartFbo_.id(), 4, drawBuffers);
     checkComplete(lightingGlintPartFbo_.id(), "lighting+glint part");

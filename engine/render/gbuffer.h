@@ -28,6 +28,10 @@ public:
     GLuint gbufferTexture(int i) const { return gbuffer_[i].id(); }
     GLuint depthTexture() const { return depth_.id(); }
     GLuint hdrFramebuffer() const { return hdrFbo_.id(); }
+    // The lighting pass's shading class per pixel (render/passes/lighting_pass.h): DEPTH16 at the render size,
+    // the depth attachment of the three lighting framebuffers; written through shadingClassFramebuffer().
+    GLuint shadingClassFramebuffer() const { return shadingClassFbo_.id(); }
+    GLuint shadingClassTexture() const { return shadingClass_.id(); }
     GLuint hdrTexture() const { return hdr_.id(); }
     GLuint displayFramebuffer() const { return displayFbo_.id(); }   // post size
     GLuint displayTexture() const { return display_.id(); }
@@ -50,7 +54,8 @@ private:
     int width_ = 0, height_ = 0, postWidth_ = 0, postHeight_ = 0;
     gl::Texture postHdr_;   // empty when the post size is the render size
     gl::Texture gbuffer_[kGBufferColorCount];
-    gl::Texture depth_, hdr_, display_;
+    gl::Texture depth_, hdr_, display_, shadingClass_;
+    gl::Framebuffer shadingClassFbo_;
     gl::Framebuffer gbufferFbo_, hdrFbo_, displayFbo_;
     void allocateGlintPost();
     gl::Texture glintEnvironment_, glintLights_;

@@ -69,6 +69,7 @@ GpuScene::GpuScene(const Scene& scene) {
         }
         MeshBuffers buffers;
         ChunkedIndices chunked = buildMeshChunks(mesh.indices, mesh.positions);
+        addChunkLods(chunked, mesh.positions);
         buffers.vertices = gl::createBuffer(GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
         buffers.indices = gl::createBuffer(GLsizeiptr(std::max<size_t>(chunked.indices.size(), 1) * sizeof(uint32_t)),
                                            chunked.indices.empty() ? nullptr : chunked.indices.data(), 0);
@@ -181,7 +182,17 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
     if (forward) glUniform3fv(5, 1, glm::value_ptr(material.emissive));
 }
 
-void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection, DrawSelection selection) const {
+LodView lodViewFor(const Camera& camera, int heightPixels, float maxPixelError) {
+    LodView lod;
+    lod.eye = camera.position;
+    if (maxPixelError > 0.0f && heightPixels > 0)
+        lod.errorPerDistance = maxPixelError * 2.0f * std::tan(0.5f * glm::radians(camera.verticalFovDegrees)) /
+                               float(heightPixels);
+    return lod;
+}
+
+void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection, DrawSelection selection,
+                             const LodView& lod) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBinding, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBinding, materials_.id());
     DrawStats stats;   // kept for --stats from the G-buffer's draw only
@@ -192,6 +203,10 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
         const MeshBuffers& mesh = meshes_[instance.mesh];
         // Visible chunks; consecutive ones merge into one range (they are adjacent in the index buffer).
         const glm::mat4 clipFromMesh = viewProjection * instance.transform;
+        // Mesh-space errors scale by the instance's largest axis scale into world space.
+        const glm::mat3 linear(instance.transform);
+        const float maxScale = std::sqrt(std::max({glm::dot(linear[0], linear[0]), glm::dot(linear[1], linear[1]),
+                                                   glm::dot(linear[2], linear[2])}));
         drawCounts_.clear();
         drawOffsets_.clear();
         uint32_t rangeEnd = ~0u;
@@ -199,15 +214,25 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
             stats.chunksTotal += 1;
             stats.trianglesTotal += chunk.indexCount / 3;
             if (boxOutsideFrustum(clipFromMesh, chunk.boundsMin, chunk.boundsMax)) continue;
-            stats.chunksDrawn += 1;
-            stats.trianglesDrawn += chunk.indexCount / 3;
-            if (chunk.firstIndex == rangeEnd) {
-                drawCounts_.back() += GLsizei(chunk.indexCount);
-            } else {
-                drawCounts_.push_back(GLsizei(chunk.indexCount));
-                drawOffsets_.push_back(reinterpret_cast<const void*>(size_t(chunk.firstIndex) * sizeof(uint32_t)));
+            ChunkLod range{chunk.firstIndex, chunk.indexCount, 0.0f};
+            if (lod.errorPerDistance > 0.0f && chunk.coarserCount > 0 && maxScale > 0.0f) {
+                const glm::vec3 centre(instance.transform * glm::vec4(0.5f * (chunk.boundsMin + chunk.boundsMax), 1.0f));
+                const float radius = 0.5f * glm::length(chunk.boundsMax - chunk.boundsMin) * maxScale;
+                const float distance = std::max(glm::length(centre - lod.eye) - radius, 0.0f);
+                int level = 0;
+                range = selectChunkLod(chunk, distance * lod.errorPerDistance / maxScale, level);
+                stats.chunksCoarser += level > 0;
             }
-            rangeEnd = chunk.firstIndex + chunk.indexCount;
+            stats.chunksDrawn += 1;
+            stats.trianglesDrawn += range.indexCount / 3;
+            stats.trianglesFullDetail += chunk.indexCount / 3;
+            if (range.firstIndex == rangeEnd) {
+                drawCounts_.back() += GLsizei(range.indexCount);
+            } else {
+                drawCounts_.push_back(GLsizei(range.indexCount));
+                drawOffsets_.push_back(reinterpret_cast<const void*>(size_t(range.firstIndex) * sizeof(uint32_t)));
+            }
+            rangeEnd = range.firstIndex + range.indexCount;
         }
         if (drawCounts_.empty()) continue;
         bindInstance(scene, instance, selection == DrawSelection::OpaqueEmissive,

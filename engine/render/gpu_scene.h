@@ -9,6 +9,7 @@
 
 #include "gl/handles.h"
 #include "render/mesh_chunks.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace glimmer {
@@ -19,6 +20,17 @@ namespace glimmer {
 // normal matrix (location 1), which they do not have.
 enum class DrawSelection { Opaque, OpaqueEmissive, OpaqueDepthOnly };
 
+// Level of detail for a draw (render/mesh_chunks.h): a chunk at distance d from `eye` (to its world-space bounding
+// sphere; 0 inside it) is drawn at the coarsest level whose world-space error is at most d x errorPerDistance.
+// errorPerDistance = 0 draws every chunk at full detail.
+struct LodView {
+    glm::vec3 eye{0.0f};
+    float errorPerDistance = 0.0f;
+};
+// The LodView of a `heightPixels`-high image of `camera` that allows `maxPixelError` pixels of geometric error
+// (an error e at distance d covers about e / d x heightPixels / (2 tan(fov / 2)) pixels). 0: full detail.
+LodView lodViewFor(const Camera& camera, int heightPixels, float maxPixelError);
+
 class GpuScene {
 public:
     explicit GpuScene(const Scene& scene);
@@ -28,8 +40,9 @@ public:
     // Draws every instance with the bound G-buffer program (sets per-draw uniforms at locations 0-4): the chunks
     // whose bounds intersect the frustum of `viewProjection`, back faces culled on single-sided materials (the
     // winding flipped for mirroring transforms). Sets GL_CULL_FACE / glFrontFace per draw and leaves culling off.
+    // `lod` picks each chunk's level of detail (passes that depth-test against the G-buffer pass the same one).
     void drawInstances(const Scene& scene, const glm::mat4& viewProjection,
-                       DrawSelection selection = DrawSelection::Opaque) const;
+                       DrawSelection selection = DrawSelection::Opaque, const LodView& lod = {}) const;
     // Draws the chunks of blended-material instances that intersect the frustum one by one, sorted back to front
     // by the distance from `eye` to each chunk's world-space bounding-box centre (glTF 3.9.4 BLEND), with the same
     // per-draw uniforms and cull state as drawInstances plus the emission uniform (location 5).
@@ -50,6 +63,8 @@ public:
     struct DrawStats {
         size_t chunksTotal = 0, chunksDrawn = 0;
         size_t trianglesTotal = 0, trianglesDrawn = 0;
+        size_t chunksCoarser = 0;          // chunks drawn at a simplified level
+        size_t trianglesFullDetail = 0;    // what the drawn chunks have at level 0
     };
     // Counts of the last drawInstances call (for --stats).
     const DrawStats& lastDrawStats() const { return drawStats_; }

@@ -82,6 +82,84 @@ ChunkedIndices buildMeshChunks(const std::vector<uint32_t>& indices, const std::
     return out;
 }
 
+namespace {
+
+// One simplified level of a chunk's triangles, in the mesh's vertex indices. The chunk's vertices are first
+// compacted to a local array, so each call costs the chunk's size rather than the mesh's (meshoptimizer sizes
+// its tables by the vertex count it is given).
+std::vector<uint32_t> simplifyChunk(const uint32_t* indices, size_t indexCount, const std::vector<glm::vec3>& positions,
+                                    size_t targetIndices, float& meshSpaceError) {
+    std::vector<uint32_t> local(indexCount), toMesh;
+    std::vector<glm::vec3> localPositions;
+    std::vector<std::pair<uint32_t, uint32_t>> seen;   // (mesh vertex, local vertex), sorted for lookup
+    seen.reserve(indexCount);
+    for (size_t i = 0; i < indexCount; ++i) seen.push_back({indices[i], 0});
+    std::sort(seen.begin(), seen.end());
+    seen.erase(std::unique(seen.begin(), seen.end(), [](auto& a, auto& b) { return a.first == b.first; }), seen.end());
+    for (size_t v = 0; v < seen.size(); ++v) {
+        seen[v].second = uint32_t(v);
+        toMesh.push_back(seen[v].first);
+        localPositions.push_back(positions[seen[v].first]);
+    }
+    for (size_t i = 0; i < indexCount; ++i)
+        local[i] = std::lower_bound(seen.begin(), seen.end(), std::pair{indices[i], 0u})->second;
+    std::vector<uint32_t> simplified(indexCount);
+    float relativeError = 0.0f;
+    // Locked border: the chunk's open edges (its seams with neighbouring chunks and the mesh's own borders) keep
+    // their vertices, so any two levels of neighbouring chunks share them exactly. Error unbounded here: the
+    // target count sets the level, the draw chooses by the error reached.
+    const float localScale = meshopt_simplifyScale(&localPositions[0].x, localPositions.size(), sizeof(glm::vec3));
+    size_t count = meshopt_simplify(simplified.data(), local.data(), indexCount, &localPositions[0].x,
+                                    localPositions.size(), sizeof(glm::vec3), targetIndices, 1.0f,
+                                    meshopt_SimplifyLockBorder, &relativeError);
+    simplified.resize(count);
+    meshSpaceError = relativeError * localScale;
+    std::vector<uint32_t> cached(count);
+    if (count > 0) meshopt_optimizeVertexCache(cached.data(), simplified.data(), count, localPositions.size());
+    for (uint32_t& index : cached) index = toMesh[index];
+    return cached;
+}
+
+}  // namespace
+
+void addChunkLods(ChunkedIndices& chunked, const std::vector<glm::vec3>& positions) {
+    if (chunked.chunks.empty()) return;
+    std::vector<bool> open(chunked.chunks.size(), true);   // a chunk that stopped simplifying gets no further level
+    for (int level = 1; level <= kMaxCoarserLods; ++level) {
+        for (size_t c = 0; c < chunked.chunks.size(); ++c) {
+            MeshChunk& chunk = chunked.chunks[c];
+            if (!open[c]) continue;
+            const uint32_t previousCount = level == 1 ? chunk.indexCount : chunk.coarser[size_t(level - 2)].indexCount;
+            const size_t target = std::max<size_t>(3, (size_t(chunk.indexCount / 3) >> (2 * level)) * 3);
+            float error = 0.0f;
+            std::vector<uint32_t> lod = simplifyChunk(chunked.indices.data() + chunk.firstIndex, chunk.indexCount,
+                                                      positions, target, error);
+            const float previousError = level == 1 ? 0.0f : chunk.coarser[size_t(level - 2)].error;
+            if (lod.size() < 3 || lod.size() * 5 > size_t(previousCount) * 4 || !(error >= previousError)) {
+                open[c] = false;
+                continue;
+            }
+            ChunkLod& entry = chunk.coarser[size_t(level - 1)];
+            entry.firstIndex = uint32_t(chunked.indices.size());
+            entry.indexCount = uint32_t(lod.size());
+            entry.error = error;
+            chunk.coarserCount = level;
+            chunked.indices.insert(chunked.indices.end(), lod.begin(), lod.end());
+        }
+    }
+}
+
+ChunkLod selectChunkLod(const MeshChunk& chunk, float allowedError, int& level) {
+    level = 0;
+    ChunkLod chosen{chunk.firstIndex, chunk.indexCount, 0.0f};
+    for (int k = 0; k < chunk.coarserCount; ++k) {
+        if (!(chunk.coarser[size_t(k)].error <= allowedError)) break;
+        chosen = chunk.coarser[size_t(k)];
+        level = k + 1;
+    }
+    return chosen;
+}
+
 bool boxOutsideFrustum(const glm::mat4& clipFromMesh, const glm::vec3& boundsMin, const glm::vec3& boundsMax) {
     // Count, per clip plane, the corners outside it; all 8 outside one plane culls the box.
     int outside[6] = {0, 0, 0, 0, 0, 0};

@@ -149,7 +149,9 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         // The last G-buffer pass after frustum culling of the meshes' chunks (back-face culling not counted).
         {"gbuffer_draw", {{"chunks", gpuScene_->lastDrawStats().chunksTotal},
                           {"chunks_drawn", gpuScene_->lastDrawStats().chunksDrawn},
-                          {"triangles_drawn", gpuScene_->lastDrawStats().trianglesDrawn}}},
+                          {"triangles_drawn", gpuScene_->lastDrawStats().trianglesDrawn},
+                          {"chunks_simplified", gpuScene_->lastDrawStats().chunksCoarser},
+                          {"triangles_full_detail", gpuScene_->lastDrawStats().trianglesFullDetail}}},
         // The last frame's shadow passes: views in use, views re-rendered (0 when every map was cached), and the
         // triangles they drew after culling each view's chunks.
         {"shadows", {{"enabled", renderer_->shadowMaps().settings().enabled},

@@ -60,6 +60,13 @@ const std::vector<CommonParam>& commonParams() {
         {{"taa.stable_glints", 1.0f, 0.0f, 1.0f,
           "aa=taa: 1 evaluates glints at the unjittered pixel centre (a still camera keeps each sparkle); 0 jittered",
           {}, true}},
+        {{"lighting.split_glinty", 0.0f, 0.0f, 1.0f,
+          "1 shades glinty and other pixels with separate programs (an early depth test picks each pixel's): "
+          "pixels of non-glinty materials skip the method's code (the window's default)",
+          {}, true}},
+        {{"lod.pixel_error", 0.0f, 0.0f, 8.0f,
+          "geometry level of detail: each mesh chunk drawn at the coarsest simplified level whose error stays within "
+          "this many pixels of the render size; 0 draws full detail (the window's default on software renderers: 1)"}},
         {{"taa.upsample", 1.0f, 0.0f, 1.0f,
           "aa=taa below render scale 1: 1 resolves to the output size (TAAU); 0 resolves at the render size and the "
           "post passes run there, then a Catmull-Rom upscale (the window's default on software renderers)",

@@ -31,7 +31,8 @@ void EmissivePass::execute(const FrameContext& frame) {
     state.blend = {true, -1, GL_ONE, GL_ONE, GL_ZERO, GL_ONE};   // radiance adds; alpha (coverage) stays
     state.apply();
     program().use();
-    frame.gpuScene.drawInstances(frame.scene, frame.viewProjection, DrawSelection::OpaqueEmissive);
+    // The G-buffer's levels of detail, so that GL_GEQUAL finds the same surfaces.
+    frame.gpuScene.drawInstances(frame.scene, frame.viewProjection, DrawSelection::OpaqueEmissive, geometryLod(frame));
 }
 
 }  // namespace glimmer

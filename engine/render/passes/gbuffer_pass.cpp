@@ -19,8 +19,9 @@ void GBufferPass::execute(const FrameContext& frame) {
     const float clearDepth = 0.0f;
     glClearNamedFramebufferfv(frame.targets.gbufferFramebuffer(), GL_DEPTH, 0, &clearDepth);
     program_.use();
-    // GpuScene culls frustum chunks and, on single-sided materials, back faces (it sets and resets the cull state).
-    frame.gpuScene.drawInstances(frame.scene, frame.viewProjection);
+    // GpuScene culls frustum chunks and, on single-sided materials, back faces (it sets and resets the cull state),
+    // and draws each chunk at the level of detail lod.pixel_error allows at this frame's (render) size.
+    frame.gpuScene.drawInstances(frame.scene, frame.viewProjection, DrawSelection::Opaque, geometryLod(frame));
 }
 
 }  // namespace glimmer

@@ -49,6 +49,12 @@ struct FrameContext {
     ShadowMaps* shadows = nullptr;           // the lights' shadow maps, fitted for this frame (render/shadow_maps.h)
 };
 
+// The level of detail of this frame's opaque geometry (lod.pixel_error pixels of error at the render height):
+// the G-buffer and every pass that depth-tests against it draw the same one.
+inline LodView geometryLod(const FrameContext& frame) {
+    return lodViewFor(frame.camera, frame.height, frame.settings.common_("lod.pixel_error"));
+}
+
 class Pass {
 public:
     virtual ~Pass() = default;
