@@ -34,7 +34,9 @@ ParamSpec moveSpeedSpec() {
 
 // Parameter prefixes shown together in one section, so the closed panel keeps few headers and fits at 1280x720.
 static std::string sectionOfPrefix(const std::string& prefix) {
-    if (prefix == "ssaa" || prefix == "taa" || prefix == "bloom" || prefix == "exposure") return "";
+    if (prefix == "ssaa" || prefix == "taa" || prefix == "bloom" || prefix == "exposure" || prefix == "lod" ||
+        prefix == "lighting")
+        return "";
     if (prefix == "probes" || prefix == "ao") return "env";
     if (prefix == "shadow") return "light";   // prefixOf already files shadow.* under the lights; the title too
     return prefix;
@@ -52,12 +54,14 @@ std::string commonGroupTitle(const std::string& prefix) {
 // Parameters of the sky-visibility bake: each change re-bakes the scene for seconds, so they are set with
 // --set (or a scene file), not dragged; the panel then has room for the interactive ones at 1280x720.
 // The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce), and the shadow
-// maps' sizes and cache switch; the texture filtering cap (a per-machine choice).
+// maps' sizes and cache switch; the texture filtering cap, the geometry level of detail, the split lighting and
+// the TAA upsampling switch (per-machine choices the window sets for its renderer).
 bool panelHidesParameter(const std::string& name) {
     static const char* const names[] = {"ao.sky_cell", "ao.sky_rays", "ao.slices",      "ao.steps",
                                         "ao.falloff",  "ao.denoise",  "ao.multibounce", "ssaa.factor",
                                         "taa.glint_history", "taa.stable_glints", "shadow.map_size",
-                                        "shadow.point_map_size", "shadow.cache", "texture_anisotropy"};
+                                        "shadow.point_map_size", "shadow.cache", "texture_anisotropy",
+                                        "lod.pixel_error", "lighting.split_glinty", "taa.upsample"};
     for (const char* n : names)
         if (name == n) return true;
     return false;
