@@ -178,7 +178,9 @@ TEST_F(EnvironmentCacheTest, EditedShaderOrDisabledCacheIsNotRead) {
     // A copy of the shader folder whose prefilter differs by a comment: another key.
     fs::path shaders = dir_ / "shaders";
     fs::copy(defaultShaderDir(), shaders, fs::copy_options::recursive);
-    std::ofstream(shaders / "env" / "prefilter.comp", std::ios::app) << "\n// edited\n";
+    const fs::path prefilter = shaders / "environment" / "prefilter.comp";
+    ASSERT_TRUE(fs::exists(prefilter)) << prefilter;   // a moved shader must not make this edit a silent no-op
+    std::ofstream(prefilter, std::ios::app) << "\n// edited\n";
     {
         Environment env(shaders);
         env.update(map.string(), SunDescription{}, "--env");
