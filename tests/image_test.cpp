@@ -9,14 +9,21 @@
 
 #include "core/files.h"
 #include "gl/program.h"
+#include "offscreen/offscreen.h"
 #include "platform/context.h"
 #include "render/image/bloom_pass.h"
 #include "render/image/halton_jitter.h"
 #include "render/image/tone_curves.h"
-#include "offscreen/offscreen.h"
 #include "render/renderer.h"
 #include "render/shader_interface.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ImageToneCurves, GlContext);
+GLIMMER_SUITE_NEEDS(ImageBloom, GlContext);
+GLIMMER_SUITE_NEEDS(ImageTaa, GlContext);
+GLIMMER_SUITE_NEEDS(ImageExposure, GlContext);
 
 namespace glimmer {
 namespace {

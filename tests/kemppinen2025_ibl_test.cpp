@@ -19,22 +19,26 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "environment/environment.h"
+#include "environment/ibl/ibl_modes.h"
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
-#include "render/aov.h"
-#include "environment/environment.h"
 #include "reference/environment_reference.h"
-#include "render/gpu_scene.h"
-#include "environment/ibl/ibl_modes.h"
 #include "reference/ibl_sampling_reference.h"
+#include "reference/kemppinen2025_reference.h"
+#include "render/aov.h"
+#include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "render/settings.h"
 #include "render/shader_interface.h"
 #include "scene/builtin_scenes.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Kemppinen2025Ibl, GlContext);
 
 using namespace glimmer;
 namespace k25 = glimmer::kemppinen2025;

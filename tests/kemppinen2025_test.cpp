@@ -13,19 +13,23 @@
 #include <numeric>
 #include <random>
 
+#include "checks/method_checks.h"
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/glint_mapping.h"
-#include "checks/method_checks.h"
-#include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
+#include "reference/kemppinen2025_reference.h"
 #include "render/aov.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "render/settings.h"
 #include "scene/builtin_scenes.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Kemppinen2025, GlContext);
 
 using namespace glimmer;
 namespace k25 = glimmer::kemppinen2025;

@@ -14,6 +14,10 @@
 #include "core/files.h"
 #include "environment/ibl/cube_pyramid.h"
 #include "platform/context.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(RegularSamplingPyramid, GlContext);
 
 namespace glimmer::ibl {
 namespace {
