@@ -3,16 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-
 namespace glimmer::ibl {
-
-PyramidFilter parsePyramidFilter(const std::string& name) {
-    if (name == "box") return PyramidFilter::Box2;
-    if (name == "gauss4") return PyramidFilter::Gauss4;
-    if (name == "gauss6") return PyramidFilter::Gauss6;
-    throw Error("pyramid filter: unknown '" + name + "' (known: box, gauss4, gauss6)");
-}
 
 const char* pyramidFilterName(PyramidFilter filter) {
     switch (filter) {
