@@ -11,6 +11,7 @@
 #include <random>
 
 #include "checks/method_checks.h"
+#include "common/bindings.glsl"
 #include "core/files.h"
 #include "gl/program.h"
 #include "glints/deliot2023/deliot2023_resources.h"
@@ -56,8 +57,8 @@ std::vector<BinomialStats> shaderBinomialStats(const std::vector<glm::vec2>& con
     const int size = dl::kNoiseSize;
     gl::Buffer configBuffer = gl::createBuffer(GLsizeiptr(configs.size() * sizeof(glm::vec2)), configs.data(), 0);
     gl::Buffer sums = gl::createBuffer(GLsizeiptr(configs.size() * size * 4 * sizeof(double)), nullptr, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, configBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, sums.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST - 1, configBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST, sums.id());
     program.use();
     glUniform1i(0, softGate ? 1 : 0);
     glDispatchCompute(size / 64, GLuint(configs.size()), 1);   // one invocation per texture row

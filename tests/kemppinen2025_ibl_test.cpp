@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 
+#include "common/bindings.glsl"
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/files.h"
@@ -181,11 +182,11 @@ public:
         glUniform3f(10, float(p.f0.x), float(p.f0.y), float(p.f0.z));
         glUniform3f(11, float(p.diffuseAlbedo.x), float(p.diffuseAlbedo.y), float(p.diffuseAlbedo.z));
         glUniform1i(12, glinty ? 1 : 0);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBuffer.id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameBuffer.id());
         glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodBuffer.id());
         glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblBuffer.id());
         env_.bind(1.0f, 0.0f);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, out.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT, out.id());
         glDispatchCompute((count + 63) / 64, 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         std::vector<glm::vec4> result(count);

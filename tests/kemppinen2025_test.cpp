@@ -14,6 +14,7 @@
 #include <random>
 
 #include "checks/method_checks.h"
+#include "common/bindings.glsl"
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -625,10 +626,10 @@ void runSamplingCase(const SamplingCase& c) {
     glUniform1i(3, c.ndf);
     glUniform1ui(4, n);
     glUniform1ui(5, 12345u);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBuffer.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3, paramBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, samples.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, priors.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameBuffer.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, paramBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT, samples.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT_2, priors.id());
     glDispatchCompute(n / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::vec4> hs(n);

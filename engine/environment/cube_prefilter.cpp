@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/bindings.glsl"
+
 namespace glimmer {
 
 namespace {
@@ -49,9 +51,9 @@ void CubePrefilter::buildSums(GLuint sourceLayers, int faceSize) {
         sumsSize_ = faceSize;
     }
     sumsProgram_.use();
-    glBindTextureUnit(0, sourceLayers);
-    glBindImageTexture(0, weighted_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, centroids_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(UNIT_ENV_INPUT, sourceLayers);
+    glBindImageTexture(IMAGE_ENV_WEIGHTED, weighted_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_CENTROID, centroids_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUniform1i(0, faceSize);
     glDispatchCompute(groups(faceSize), groups(faceSize), 6);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -62,8 +64,8 @@ void CubePrefilter::buildSums(GLuint sourceLayers, int faceSize) {
 void CubePrefilter::resample(GLuint source, int sourceCube, int sourceMip, GLuint target, int mip, int size,
                              int targetLayerFace) {
     resampleProgram_.use();
-    glBindTextureUnit(0, source);
-    glBindImageTexture(0, target, mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(UNIT_ENV_INPUT, source);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, target, mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUniform1i(0, size);
     glUniform1i(1, sourceCube);
     glUniform1i(2, targetLayerFace);
@@ -117,10 +119,10 @@ void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& l
         }
         gl::Program& program = count == 1 ? program1_ : count == 2 ? program2_ : program4_;
         program.use();
-        glBindTextureUnit(0, weighted_.id());
-        glBindTextureUnit(1, centroids_.id());
-        if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        else glBindImageTexture(0, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindTextureUnit(UNIT_ENV_WEIGHTED, weighted_.id());
+        glBindTextureUnit(UNIT_ENV_CENTROID, centroids_.id());
+        if (half) glBindImageTexture(IMAGE_ENV_OUTPUT, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        else glBindImageTexture(IMAGE_ENV_OUTPUT, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glUniform1i(0, computed);
         glUniform4fv(1, 1, alphas);
         glUniform1i(2, GLint(ndfMask & 3u));

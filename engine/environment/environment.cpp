@@ -300,7 +300,7 @@ void Environment::buildBrdfLut() {
     lutProgram_.use();
     glUniform1i(0, kBrdfLutSize);
     glUniform1i(1, kBrdfLutSamples);
-    glBindImageTexture(0, brdfLut_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, brdfLut_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups(kBrdfLutSize), groups(kBrdfLutSize), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     cached.resize(size_t(kBrdfLutSize) * kBrdfLutSize * 4);
@@ -313,7 +313,7 @@ void Environment::fillProceduralSky(const SunDescription& sun, bool drawSun) {
     glUniform3fv(1, 1, glm::value_ptr(sun.direction));
     glUniform3fv(2, 1, glm::value_ptr(sun.irradiance));
     glUniform1i(3, drawSun ? 1 : 0);
-    glBindImageTexture(0, sourceCube_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, sourceCube_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups(kFaceSize), groups(kFaceSize), 6);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
@@ -358,8 +358,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
         case EnvironmentSpec::Kind::File:
             equirectProgram_.use();
             glUniform1i(0, kFaceSize);
-            glBindTextureUnit(0, equirect.id());
-            glBindImageTexture(0, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            glBindTextureUnit(UNIT_ENV_INPUT, equirect.id());
+            glBindImageTexture(IMAGE_ENV_OUTPUT, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             glDispatchCompute(groups(kFaceSize), groups(kFaceSize), 6);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
             break;

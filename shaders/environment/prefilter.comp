@@ -22,9 +22,9 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
-layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
-layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one mip, all layers
+layout(binding = UNIT_ENV_WEIGHTED) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
+layout(binding = UNIT_ENV_CENTROID) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly imageCubeArray u_target;  // one mip, all layers
 layout(location = 0) uniform int u_size;          // face size of the target
 layout(location = 1) uniform vec4 u_alphas;       // the dispatch's roughnesses, ascending; u_count <= LOBE_ALPHAS
 layout(location = 2) uniform int u_ndfMask;       // bit 0 GGX, bit 1 Beckmann

@@ -6,9 +6,9 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2DArray u_radiance;          // source cube faces as layers
-layout(rgba32f, binding = 0) uniform writeonly image2DArray u_weighted;
-layout(rgba32f, binding = 1) uniform writeonly image2DArray u_centroid;
+layout(binding = UNIT_ENV_INPUT) uniform sampler2DArray u_radiance;          // source cube faces as layers
+layout(rgba32f, binding = IMAGE_ENV_WEIGHTED) uniform writeonly image2DArray u_weighted;
+layout(rgba32f, binding = IMAGE_ENV_CENTROID) uniform writeonly image2DArray u_centroid;
 layout(location = 0) uniform int u_size;                         // face size of source level 0
 
 // Solid angle of the face region [-1, s] x [-1, t] seen from the cube's centre, up to a constant
