@@ -315,6 +315,16 @@ TEST(ImageTaa, OneFrameEqualsNoAntiAliasing) {
     RenderResult taa = renderOffscreen(request);
     EXPECT_EQ(plain.hdr, taa.hdr);
     EXPECT_EQ(plain.display, taa.display);
+    // The equality above would hold as well if aa=taa were ignored: from the second frame on, TAA's jittered
+    // samples resolve the sphere's silhouette differently, while frames without it repeat the first one exactly.
+    request.frames = 4;
+    RenderResult resolved = renderOffscreen(request);
+    request.settings.apply("aa=off");
+    RenderResult repeated = renderOffscreen(request);
+    EXPECT_EQ(plain.display, repeated.display) << "4 frames without TAA should repeat the first one";
+    size_t changed = 0;
+    for (size_t i = 0; i < plain.display.size(); ++i) changed += plain.display[i] != resolved.display[i];
+    EXPECT_GT(changed, plain.display.size() / 200) << "4 TAA frames left the image as one unjittered frame: is TAA running?";
 }
 
 fs::path sharedHdris() {
