@@ -10,11 +10,11 @@ namespace {
 constexpr int kLocalSize = 8;     // work-group edge of shaders/environment/prefilter.comp and radiance_centroid.comp
 constexpr int kRootFace = 4;      // the quadtree's roots: the texels of the mip whose faces are 4 x 4
 // Texels straddling the horizon are split while wider than this (radians at the face centre): 1/8 of a face, so
-// they end at 1/16 of a face (with 1/32 the wide levels changed by under 1%).
+// they end at 1/16 of a face; a finer split no longer changes the wide levels (docs/measurements.md).
 constexpr float kHorizonWidth = 2.0f / 16.0f;
 // runMipChain: levels 1 .. this are computed at half their face size and upsampled bilinearly: their lobes (alpha
-// 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), they
-// cost four times less, and the upsampling moved the worst texel against quadrature by under 1% (docs/environment.md).
+// 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), so the
+// upsampling keeps them against quadrature (docs/measurements.md) at a quarter of the cost.
 constexpr int kHalfResolutionLevels = 2;
 constexpr int kLobeAlphas = 4;     // roughnesses per walk of shaders/environment/prefilter.comp (u_alphas)
 int groups(int size) { return (size + kLocalSize - 1) / kLocalSize; }

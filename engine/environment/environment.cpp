@@ -392,9 +392,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
 
 namespace {
 // Faces over 32 are filtered at the smallest power of two >= 1.6 / alpha (rungs 1 and 2 at 64, the rest at 32 or
-// 16) and upsampled bilinearly; not below 32 under alpha 0.5 (16 put studio_small_03 22% off at alpha 0.16,
-// Beckmann, and rooitou_park 15% at 0.42), nor below 16 above it (the rough lobes' horizon kink: 8 x 8 put alpha 1
-// 1.9x off). Rung 2 at 32 was 30% off at a texel (empty_warehouse_01, Beckmann); docs/environment.md.
+// 16) and upsampled bilinearly; not below 32 under alpha 0.5, where smaller faces misplace small lamps, nor below 16
+// above it, where they bend the rough lobes' horizon kink (the errors measured: docs/measurements.md).
 int computedFaceSize(float alpha, int size) {
     int least = alpha < 0.5f ? 32 : 16;
     if (size <= least) return size;

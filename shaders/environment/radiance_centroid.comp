@@ -2,7 +2,7 @@
 //   u_weighted = L dw (all four channels),  u_centroid = (luminance x dw x direction, dw).
 // Their box mips are then 4^-m times the sums over the texels a mip-m texel covers, so the walk reads each coarse
 // texel's exact integral of L and exact solid angle (the source's own box mips weight a face corner's small texels
-// like its centre's, which over a 4 x 4 face misweights a lamp by up to 5x), and where its light comes from.
+// like its centre's, which misweights a lamp in a corner), and where its light comes from.
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
