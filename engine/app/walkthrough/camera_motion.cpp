@@ -15,6 +15,7 @@ CameraMotion::CameraMotion(ui::WindowControls& controls, std::function<void(cons
 // Walking collides with the scene's triangles (Bullet BVH, built once per scene); a scene without any flies.
 void CameraMotion::buildCollision(const Scene& scene) {
     Stopwatch clock;
+    collision_.reset();   // a scene without triangles must not walk on the previous scene's
     try {
         collision_ = std::make_unique<SceneCollision>(scene);
         log::info("view: collision mesh of ", collision_->triangleCount(), " triangles in ",
