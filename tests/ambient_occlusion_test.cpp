@@ -22,6 +22,10 @@
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(AmbientOcclusion, GlContext);
 
 namespace glimmer {
 namespace {

@@ -11,6 +11,11 @@
 #include "platform/context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(AsyncGpuTimers, GlContext);
+GLIMMER_SUITE_NEEDS(PassTimers, GlContext);
 
 namespace glimmer {
 namespace {

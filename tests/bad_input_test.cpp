@@ -15,6 +15,11 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(BadInput, Process);
+GLIMMER_SUITE_NEEDS(RenderCommand, Process);
 
 using glimmer::test::runGlimmer;
 

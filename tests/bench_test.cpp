@@ -19,7 +19,16 @@
 #include "offscreen/offscreen.h"
 #include "support/golden.h"
 #include "support/process.h"
+#include "support/test_needs.h"
 #include "ui/font.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(BenchSuite, GlContext);
+GLIMMER_SUITE_NEEDS(BenchCommand, Process);
+GLIMMER_SUITE_NEEDS(BenchPlot, Process);
+GLIMMER_SUITE_NEEDS(BenchCompare, GlContext);
+GLIMMER_SUITE_NEEDS(BenchTemporalRender, GlContext);
+GLIMMER_SUITE_NEEDS(BenchSplitView, Window);
 
 using namespace glimmer;
 using namespace glimmer::bench;
@@ -345,7 +354,7 @@ TEST(BenchTemporal, ReprojectedFlickerSeparatesStableFromPopping) {
 }
 
 // Through the renderer: a static camera gives exactly 0 for a deterministic method; a dolly gives a finite value.
-TEST(BenchTemporal, StaticCameraGivesZeroAndDollyIsFinite) {
+TEST(BenchTemporalRender, StaticCameraGivesZeroAndDollyIsFinite) {
     TemporalOptions options;
     options.scenes = {"plane25"};
     options.methods = {"zirr2016"};

@@ -10,12 +10,16 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "offscreen/offscreen.h"
 #include "reference/brdf_reference.h"
 #include "reference/clearcoat_reference.h"
-#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Clearcoat, GlContext);
 
 using namespace glimmer;
 

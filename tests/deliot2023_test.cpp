@@ -10,19 +10,31 @@
 #include <numeric>
 #include <random>
 
+#include "checks/method_checks.h"
+#include "common/bindings.glsl"
 #include "core/files.h"
 #include "gl/program.h"
-#include "checks/method_checks.h"
-#include "reference/method_probe.h"
-#include "reference/deliot2023_reference.h"
 #include "glints/deliot2023/deliot2023_resources.h"
-#include "platform/context.h"
-#include "render/aov.h"
-#include "reference/brdf_reference.h"
 #include "offscreen/offscreen.h"
+#include "platform/context.h"
+#include "reference/brdf_reference.h"
+#include "reference/deliot2023_reference.h"
+#include "reference/method_probe.h"
+#include "render/aov.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Deliot2023Binomial, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Blending, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Cost, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Grids, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Convergence, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Glints, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Coherence, GlContext);
+GLIMMER_SUITE_NEEDS(Deliot2023Golden, GlContext);
 
 using namespace glimmer;
 namespace dl = glimmer::deliot2023;
@@ -45,8 +57,8 @@ std::vector<BinomialStats> shaderBinomialStats(const std::vector<glm::vec2>& con
     const int size = dl::kNoiseSize;
     gl::Buffer configBuffer = gl::createBuffer(GLsizeiptr(configs.size() * sizeof(glm::vec2)), configs.data(), 0);
     gl::Buffer sums = gl::createBuffer(GLsizeiptr(configs.size() * size * 4 * sizeof(double)), nullptr, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, configBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, sums.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST - 1, configBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_METHOD_LAST, sums.id());
     program.use();
     glUniform1i(0, softGate ? 1 : 0);
     glDispatchCompute(size / 64, GLuint(configs.size()), 1);   // one invocation per texture row

@@ -14,6 +14,10 @@
 #include "render/dynamic_resolution.h"
 #include "render/image/upscale.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(UpscaleWindow, Window);
 
 namespace glimmer {
 namespace {
@@ -137,7 +141,7 @@ std::vector<uint8_t> rgba8BottomUp(const ImageF& image) {
     return out;
 }
 
-TEST(Upscale, WindowAtHalfScaleShowsTheHalfSizeRenderUpscaledWithItsDerivatives) {
+TEST(UpscaleWindow, AtHalfScaleShowsTheHalfSizeRenderUpscaledWithItsDerivatives) {
     if (test::runUnderXvfb("command -v xvfb-run > /dev/null") != 0) GTEST_SKIP() << "xvfb-run not installed";
     std::string dir = test::makeTempDir("upscale");
     const std::string scene = " --scene plane25 --env none";

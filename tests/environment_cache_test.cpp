@@ -10,8 +10,12 @@
 
 #include "core/files.h"
 #include "core/image_io.h"
-#include "platform/context.h"
 #include "environment/environment.h"
+#include "platform/context.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(EnvironmentCacheTest, GlContext);
 
 namespace glimmer {
 namespace {

@@ -13,12 +13,16 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/image_io.h"
-#include "platform/context.h"
 #include "environment/environment.h"
+#include "platform/context.h"
 #include "reference/environment_reference.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Environment, GlContext);
 
 namespace glimmer {
 namespace {

@@ -4,11 +4,18 @@
 
 #include <cmath>
 
-#include "render/aov.h"
-#include "reference/brdf_reference.h"
 #include "offscreen/offscreen.h"
+#include "reference/brdf_reference.h"
+#include "render/aov.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(PlaneDerivatives, GlContext);
+GLIMMER_SUITE_NEEDS(PlaneRadiance, GlContext);
+GLIMMER_SUITE_NEEDS(Backends, GlContext);
+GLIMMER_SUITE_NEEDS(Output, GlContext);
 
 using namespace glimmer;
 

@@ -13,6 +13,10 @@
 #include "platform/context.h"
 #include "render/frame/frame_resources.h"
 #include "render/renderer.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(FrameList, GlContext);
 
 namespace glimmer {
 namespace {

@@ -15,11 +15,15 @@
 #include <map>
 #include <random>
 
+#include "offscreen/offscreen.h"
 #include "render/aov.h"
 #include "render/mesh_chunks.h"
-#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(GeometryCulling, GlContext);
 
 namespace glimmer {
 namespace {

@@ -16,8 +16,12 @@
 #include <vector>
 
 #include "bench/sparkle_stats.h"
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(GlintSameMaterial, GlContext);
 
 using namespace glimmer;
 

@@ -16,11 +16,16 @@
 #include "bench/sparkle_stats.h"
 #include "glints/glint_mapping.h"
 #include "glints/methods.h"
+#include "offscreen/offscreen.h"
 #include "reference/kemppinen2025_reference.h"
 #include "render/aov.h"
-#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(GlintLifespan, GlContext);
+GLIMMER_SUITE_NEEDS(GlintFootprint, GlContext);
 
 using namespace glimmer;
 

@@ -10,6 +10,11 @@
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(BuiltinSceneGolden, GlContext);
+GLIMMER_SUITE_NEEDS(GoldenCompare, GlContext);
 
 using namespace glimmer;
 

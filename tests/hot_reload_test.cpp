@@ -19,6 +19,10 @@
 #include "platform/context.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(HotReload, GlContext);
 
 namespace glimmer {
 namespace {

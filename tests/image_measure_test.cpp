@@ -10,9 +10,13 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ImageMeasure, GlContext);
 
 namespace glimmer {
 namespace {

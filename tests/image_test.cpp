@@ -9,14 +9,21 @@
 
 #include "core/files.h"
 #include "gl/program.h"
+#include "offscreen/offscreen.h"
 #include "platform/context.h"
 #include "render/image/bloom_pass.h"
 #include "render/image/halton_jitter.h"
 #include "render/image/tone_curves.h"
-#include "offscreen/offscreen.h"
 #include "render/renderer.h"
 #include "render/shader_interface.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ImageToneCurves, GlContext);
+GLIMMER_SUITE_NEEDS(ImageBloom, GlContext);
+GLIMMER_SUITE_NEEDS(ImageTaa, GlContext);
+GLIMMER_SUITE_NEEDS(ImageExposure, GlContext);
 
 namespace glimmer {
 namespace {
@@ -308,6 +315,16 @@ TEST(ImageTaa, OneFrameEqualsNoAntiAliasing) {
     RenderResult taa = renderOffscreen(request);
     EXPECT_EQ(plain.hdr, taa.hdr);
     EXPECT_EQ(plain.display, taa.display);
+    // The equality above would hold as well if aa=taa were ignored: from the second frame on, TAA's jittered
+    // samples resolve the sphere's silhouette differently, while frames without it repeat the first one exactly.
+    request.frames = 4;
+    RenderResult resolved = renderOffscreen(request);
+    request.settings.apply("aa=off");
+    RenderResult repeated = renderOffscreen(request);
+    EXPECT_EQ(plain.display, repeated.display) << "4 frames without TAA should repeat the first one";
+    size_t changed = 0;
+    for (size_t i = 0; i < plain.display.size(); ++i) changed += plain.display[i] != resolved.display[i];
+    EXPECT_GT(changed, plain.display.size() / 200) << "4 TAA frames left the image as one unjittered frame: is TAA running?";
 }
 
 fs::path sharedHdris() {

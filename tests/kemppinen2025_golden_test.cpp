@@ -6,6 +6,10 @@
 
 #include "offscreen/offscreen.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Kemppinen2025Golden, GlContext);
 
 using namespace glimmer;
 

@@ -16,25 +16,30 @@
 #include <map>
 #include <memory>
 
+#include "common/bindings.glsl"
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "environment/environment.h"
+#include "environment/ibl/ibl_modes.h"
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
-#include "render/aov.h"
-#include "environment/environment.h"
 #include "reference/environment_reference.h"
-#include "render/gpu_scene.h"
-#include "environment/ibl/ibl_modes.h"
 #include "reference/ibl_sampling_reference.h"
+#include "reference/kemppinen2025_reference.h"
+#include "render/aov.h"
+#include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "render/settings.h"
 #include "render/shader_interface.h"
 #include "scene/builtin_scenes.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Kemppinen2025Ibl, GlContext);
 
 using namespace glimmer;
 namespace k25 = glimmer::kemppinen2025;
@@ -177,11 +182,11 @@ public:
         glUniform3f(10, float(p.f0.x), float(p.f0.y), float(p.f0.z));
         glUniform3f(11, float(p.diffuseAlbedo.x), float(p.diffuseAlbedo.y), float(p.diffuseAlbedo.z));
         glUniform1i(12, glinty ? 1 : 0);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBuffer.id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameBuffer.id());
         glBindBufferBase(GL_UNIFORM_BUFFER, kMethodParamBinding, methodBuffer.id());
         glBindBufferBase(GL_UNIFORM_BUFFER, kIblParamBinding, iblBuffer.id());
         env_.bind(1.0f, 0.0f);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, out.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT, out.id());
         glDispatchCompute((count + 63) / 64, 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         std::vector<glm::vec4> result(count);

@@ -13,19 +13,24 @@
 #include <numeric>
 #include <random>
 
+#include "checks/method_checks.h"
+#include "common/bindings.glsl"
 #include "core/files.h"
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/glint_mapping.h"
-#include "checks/method_checks.h"
-#include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
+#include "reference/kemppinen2025_reference.h"
 #include "render/aov.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "render/settings.h"
 #include "scene/builtin_scenes.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Kemppinen2025, GlContext);
 
 using namespace glimmer;
 namespace k25 = glimmer::kemppinen2025;
@@ -621,10 +626,10 @@ void runSamplingCase(const SamplingCase& c) {
     glUniform1i(3, c.ndf);
     glUniform1ui(4, n);
     glUniform1ui(5, 12345u);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameBuffer.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3, paramBuffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, samples.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, priors.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameBuffer.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, paramBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT, samples.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_RIG_OUTPUT_2, priors.id());
     glDispatchCompute(n / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::vec4> hs(n);

@@ -16,12 +16,16 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
 #include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(KhronosConformance, GlContext);
 
 namespace fs = std::filesystem;
 using glimmer::RenderRequest;

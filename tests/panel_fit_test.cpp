@@ -10,11 +10,15 @@
 #include "gl/handles.h"
 #include "platform/context.h"
 #include "render/settings.h"
+#include "support/test_needs.h"
+#include "support/ui_canvas.h"
 #include "ui/font.h"
 #include "ui/settings_panel.h"
 #include "ui/ui.h"
 #include "ui/ui_renderer.h"
-#include "support/ui_canvas.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(PanelFit, GlContext);
 
 namespace glimmer::ui {
 namespace {

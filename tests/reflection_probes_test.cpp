@@ -16,6 +16,10 @@
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ReflectionProbes, GlContext);
 
 namespace glimmer {
 namespace {

@@ -8,6 +8,10 @@
 #include "offscreen/offscreen.h"
 #include "render/settings.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(RegularSamplingGolden, GlContext);
 
 namespace glimmer {
 namespace {

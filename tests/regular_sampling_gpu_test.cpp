@@ -18,12 +18,16 @@
 #include "core/image_io.h"
 #include "environment/ibl/ibl_estimators.h"
 #include "environment/ibl/kurt_ibl_resources.h"
-#include "render/renderer_capture.h"
+#include "offscreen/offscreen.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "offscreen/offscreen.h"
+#include "render/renderer_capture.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(RegularSamplingGpu, GlContext);
 
 namespace glimmer {
 namespace {

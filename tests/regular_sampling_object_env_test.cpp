@@ -8,14 +8,18 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "environment/ibl/object_environment.h"
-#include "render/renderer_capture.h"
 #include "platform/context.h"
 #include "reference/environment_reference.h"
 #include "render/aov.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "render/renderer_capture.h"
 #include "render/settings.h"
 #include "scene/scene_loader.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(RegularSamplingObjectEnvironment, GlContext);
 
 namespace glimmer::ibl {
 namespace {

@@ -12,6 +12,11 @@
 
 #include "support/golden.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(RenderPath, Process);
+GLIMMER_SUITE_NEEDS(CommandLine, Process);
 
 namespace glimmer {
 namespace {

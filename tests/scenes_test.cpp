@@ -18,14 +18,19 @@
 #include <tuple>
 
 #include "core/error.h"
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
 #include "scene/atrium.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_file.h"
 #include "scene/scene_loader.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ScenesGltf, GlContext);
+GLIMMER_SUITE_NEEDS(ScenesAtrium, GlContext);
 
 namespace fs = std::filesystem;
 using glimmer::Scene;

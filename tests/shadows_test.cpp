@@ -29,6 +29,10 @@
 #include "render/shadows/shadow_maps.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Shadows, GlContext);
 
 namespace glimmer {
 namespace {

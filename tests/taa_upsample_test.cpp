@@ -20,12 +20,17 @@
 #include "core/clock.h"
 #include "core/files.h"
 #include "core/image_io.h"
+#include "offscreen/offscreen.h"
 #include "render/aov.h"
 #include "render/image/halton_jitter.h"
-#include "offscreen/offscreen.h"
 #include "render/image/upscale.h"
 #include "scene/scene_loader.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(ImageTaau, GlContext);
+GLIMMER_SUITE_NEEDS(Window, Window);
 
 namespace glimmer {
 namespace {

@@ -13,6 +13,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(UiRenderer, GlContext);
 
 namespace glimmer::ui {
 namespace {

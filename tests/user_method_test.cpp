@@ -13,14 +13,19 @@
 #include <fstream>
 #include <string>
 
+#include "checks/method_checks.h"
 #include "core/files.h"
 #include "glints/glint_mapping.h"
-#include "checks/method_checks.h"
 #include "glints/user/user_methods.h"
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
 #include "render/settings.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(UserMethod, GlContext);
+GLIMMER_SUITE_NEEDS(UserMethodCheck, Process);
 
 namespace glimmer {
 namespace {

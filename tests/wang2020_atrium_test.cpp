@@ -15,8 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "render/aov.h"
 #include "offscreen/offscreen.h"
+#include "render/aov.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Wang2020Atrium, GlContext);
 
 namespace glimmer {
 namespace {

@@ -14,21 +14,32 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/image_io.h"
+#include "environment/environment.h"
 #include "glints/methods.h"
 #include "glints/wang2020/wang2020_dpf.h"
+#include "glints/wang2020/wang2020_post_pass.h"
 #include "glints/wang2020/wang2020_prefilter.h"
 #include "glints/wang2020/wang2020_quadtree.h"
-#include "reference/wang2020_reference.h"
 #include "glints/wang2020/wang2020_resources.h"
-#include "platform/context.h"
-#include "render/aov.h"
-#include "environment/environment.h"
-#include "reference/environment_reference.h"
-#include "glints/wang2020/wang2020_post_pass.h"
-#include "reference/wang2020_post_reference.h"
 #include "offscreen/offscreen.h"
+#include "platform/context.h"
+#include "reference/environment_reference.h"
+#include "reference/wang2020_post_reference.h"
+#include "reference/wang2020_reference.h"
+#include "render/aov.h"
 #include "support/golden.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Wang2020Quadtree, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020Render, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020Editing, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020BadInput, Process);
+GLIMMER_SUITE_NEEDS(Wang2020Prefilter, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020Environment, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020Golden, GlContext);
+GLIMMER_SUITE_NEEDS(Wang2020PostPass, GlContext);
 
 using namespace glimmer;
 namespace w = glimmer::wang2020;

@@ -15,6 +15,10 @@
 #include "core/image_io.h"
 #include "support/golden.h"
 #include "support/process.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Window, Window);
 
 namespace glimmer {
 namespace {

@@ -8,13 +8,18 @@
 #include <numeric>
 #include <random>
 
+#include "offscreen/offscreen.h"
+#include "platform/context.h"
 #include "reference/method_probe.h"
 #include "reference/zirr2016_reference.h"
-#include "platform/context.h"
 #include "render/aov.h"
-#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
+#include "support/test_needs.h"
+
+// What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
+GLIMMER_SUITE_NEEDS(Zirr2016, GlContext);
+GLIMMER_SUITE_NEEDS(Zirr2016Golden, GlContext);
 
 using namespace glimmer;
 namespace zk = glimmer::zirr2016;

@@ -1,11 +1,11 @@
-// glimmer view: the walkthrough window (engine/app/walkthrough.cpp). `--frames N --screenshot FILE` renders N
+// glimmer view: the walkthrough window (engine/app/walkthrough/). `--frames N --screenshot FILE` renders N
 // frames and exits (tests run it under xvfb-run); with --hide-ui that image equals `glimmer render`.
 #include <cstdio>
 #include <cstdlib>
 
 #include "app/commands.h"
 #include "app/common_options.h"
-#include "app/walkthrough.h"
+#include "app/walkthrough/walkthrough.h"
 #include "core/cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"

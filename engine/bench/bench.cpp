@@ -142,8 +142,8 @@ BenchReport runBench(const BenchOptions& options) {
             session.reset();  // one context at a time
             session = std::make_unique<OffscreenSession>(request);
             sessionScene = c.scene;
-            // A fresh session's first frames ran ~1.6x slower for longer than one warm-up frame on llvmpipe
-            // (measured: smooth sphere 86 ms CPU for 6 frames, then 52 ms); settle before the first timed case.
+            // A fresh session's first frames run slower for longer than one warm-up frame on llvmpipe
+            // (docs/measurements.md); settle before the first timed case.
             request.frames = 3;
             session->render(request);
         }

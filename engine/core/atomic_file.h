@@ -24,8 +24,6 @@ public:
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
 
-    // The temporary file, for writers that open files by name (OpenImageIO); it keeps the target's extension.
-    const std::filesystem::path& tempPath() const { return temp_; }
     // Appends bytes; throws Error naming the target on a short write (full disk, file size limit).
     void write(const void* data, size_t size);
     void write(std::string_view text) { write(text.data(), text.size()); }

@@ -160,8 +160,8 @@ bool readImageHeader(const unsigned char* b, size_t n, int& width, int& height, 
     return false;
 }
 
-// OpenEXR allocates what a header attribute's size field claims before noticing the file is shorter (a fuzzed
-// 808-byte file claiming a 1.6 GB string took 70 s and 1.6 GB), and no OpenEXR or OpenImageIO call checks the
+// OpenEXR allocates what a header attribute's size field claims before noticing the file is shorter (fuzzing found
+// it: tests/data/hostile/fuzz-exr-attribute-1.6gb.exr, docs/cli.md), and no OpenEXR or OpenImageIO call checks the
 // header without reading it. So the attribute list (OpenEXR file layout: name, type, int32 size, value, until
 // an empty name) is walked here first: every attribute must lie inside the file, the file must be a single-part
 // flat image, and its dataWindow must pass checkImageSize.

@@ -2,17 +2,19 @@
 
 #include <algorithm>
 
+#include "common/bindings.glsl"
+
 namespace glimmer {
 
 namespace {
 constexpr int kLocalSize = 8;     // work-group edge of shaders/environment/prefilter.comp and radiance_centroid.comp
 constexpr int kRootFace = 4;      // the quadtree's roots: the texels of the mip whose faces are 4 x 4
 // Texels straddling the horizon are split while wider than this (radians at the face centre): 1/8 of a face, so
-// they end at 1/16 of a face (with 1/32 the wide levels changed by under 1%).
+// they end at 1/16 of a face; a finer split no longer changes the wide levels (docs/measurements.md).
 constexpr float kHorizonWidth = 2.0f / 16.0f;
 // runMipChain: levels 1 .. this are computed at half their face size and upsampled bilinearly: their lobes (alpha
-// 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), they
-// cost four times less, and the upsampling moved the worst texel against quadrature by under 1% (docs/environment.md).
+// 0.04 and 0.16) still span about 2 and 7 texels there (sigma of the lobe in l ~ sqrt(2) alpha for Beckmann), so the
+// upsampling keeps them against quadrature (docs/measurements.md) at a quarter of the cost.
 constexpr int kHalfResolutionLevels = 2;
 constexpr int kLobeAlphas = 4;     // roughnesses per walk of shaders/environment/prefilter.comp (u_alphas)
 int groups(int size) { return (size + kLocalSize - 1) / kLocalSize; }
@@ -49,9 +51,9 @@ void CubePrefilter::buildSums(GLuint sourceLayers, int faceSize) {
         sumsSize_ = faceSize;
     }
     sumsProgram_.use();
-    glBindTextureUnit(0, sourceLayers);
-    glBindImageTexture(0, weighted_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, centroids_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(UNIT_ENV_INPUT, sourceLayers);
+    glBindImageTexture(IMAGE_ENV_WEIGHTED, weighted_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_CENTROID, centroids_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUniform1i(0, faceSize);
     glDispatchCompute(groups(faceSize), groups(faceSize), 6);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -62,8 +64,8 @@ void CubePrefilter::buildSums(GLuint sourceLayers, int faceSize) {
 void CubePrefilter::resample(GLuint source, int sourceCube, int sourceMip, GLuint target, int mip, int size,
                              int targetLayerFace) {
     resampleProgram_.use();
-    glBindTextureUnit(0, source);
-    glBindImageTexture(0, target, mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(UNIT_ENV_INPUT, source);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, target, mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glUniform1i(0, size);
     glUniform1i(1, sourceCube);
     glUniform1i(2, targetLayerFace);
@@ -117,10 +119,10 @@ void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& l
         }
         gl::Program& program = count == 1 ? program1_ : count == 2 ? program2_ : program4_;
         program.use();
-        glBindTextureUnit(0, weighted_.id());
-        glBindTextureUnit(1, centroids_.id());
-        if (half) glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        else glBindImageTexture(0, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindTextureUnit(UNIT_ENV_WEIGHTED, weighted_.id());
+        glBindTextureUnit(UNIT_ENV_CENTROID, centroids_.id());
+        if (half) glBindImageTexture(IMAGE_ENV_OUTPUT, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        else glBindImageTexture(IMAGE_ENV_OUTPUT, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glUniform1i(0, computed);
         glUniform4fv(1, 1, alphas);
         glUniform1i(2, GLint(ndfMask & 3u));

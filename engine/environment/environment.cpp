@@ -300,7 +300,7 @@ void Environment::buildBrdfLut() {
     lutProgram_.use();
     glUniform1i(0, kBrdfLutSize);
     glUniform1i(1, kBrdfLutSamples);
-    glBindImageTexture(0, brdfLut_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, brdfLut_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups(kBrdfLutSize), groups(kBrdfLutSize), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     cached.resize(size_t(kBrdfLutSize) * kBrdfLutSize * 4);
@@ -313,7 +313,7 @@ void Environment::fillProceduralSky(const SunDescription& sun, bool drawSun) {
     glUniform3fv(1, 1, glm::value_ptr(sun.direction));
     glUniform3fv(2, 1, glm::value_ptr(sun.irradiance));
     glUniform1i(3, drawSun ? 1 : 0);
-    glBindImageTexture(0, sourceCube_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_ENV_OUTPUT, sourceCube_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups(kFaceSize), groups(kFaceSize), 6);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
@@ -358,8 +358,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
         case EnvironmentSpec::Kind::File:
             equirectProgram_.use();
             glUniform1i(0, kFaceSize);
-            glBindTextureUnit(0, equirect.id());
-            glBindImageTexture(0, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            glBindTextureUnit(UNIT_ENV_INPUT, equirect.id());
+            glBindImageTexture(IMAGE_ENV_OUTPUT, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             glDispatchCompute(groups(kFaceSize), groups(kFaceSize), 6);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
             break;
@@ -392,9 +392,8 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
 
 namespace {
 // Faces over 32 are filtered at the smallest power of two >= 1.6 / alpha (rungs 1 and 2 at 64, the rest at 32 or
-// 16) and upsampled bilinearly; not below 32 under alpha 0.5 (16 put studio_small_03 22% off at alpha 0.16,
-// Beckmann, and rooitou_park 15% at 0.42), nor below 16 above it (the rough lobes' horizon kink: 8 x 8 put alpha 1
-// 1.9x off). Rung 2 at 32 was 30% off at a texel (empty_warehouse_01, Beckmann); docs/environment.md.
+// 16) and upsampled bilinearly; not below 32 under alpha 0.5, where smaller faces misplace small lamps, nor below 16
+// above it, where they bend the rough lobes' horizon kink (the errors measured: docs/measurements.md).
 int computedFaceSize(float alpha, int size) {
     int least = alpha < 0.5f ? 32 : 16;
     if (size <= least) return size;

@@ -1,5 +1,5 @@
 // Disk cache of the environment precomputation (cubemap, its mips, the prefiltered specular levels and the SH
-// irradiance): the GPU work takes 2.7-2.8 s per map on llvmpipe and is the same on every launch.
+// irradiance): the GPU work takes seconds per map on a software renderer and is the same on every launch.
 //
 // The key holds everything the maps depend on: the spec (for a file, a hash of its bytes, not its path or date;
 // for the procedural sky, the sun), the map sizes and sample counts, and a hash of the fully expanded source of

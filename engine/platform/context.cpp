@@ -2,6 +2,8 @@
 
 #include <glad/gl.h>
 
+#include <atomic>
+
 #include "core/error.h"
 #include "core/log.h"
 #include "platform/driver_pinning.h"
@@ -30,7 +32,12 @@ static std::string glString(GLenum name) {
 std::string GLContext::rendererString() const { return glString(GL_RENDERER); }
 std::string GLContext::versionString() const { return glString(GL_VERSION); }
 
+static std::atomic<int> g_contextsCreated{0};
+
+int glContextsCreated() { return g_contextsCreated.load(); }
+
 void loadGLFunctions(void* (*getProcAddress)(const char*), const char* backendLabel) {
+    ++g_contextsCreated;
     int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(getProcAddress));
     if (version == 0) throw Error(std::string(backendLabel) + ": could not load GL functions");
     int major = GLAD_VERSION_MAJOR(version), minor = GLAD_VERSION_MINOR(version);

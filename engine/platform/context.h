@@ -33,4 +33,8 @@ std::unique_ptr<GLContext> createOSMesaContext();  // throws Error with the reas
 // Loads GL entry points through glad for the current context; throws when the context is below 4.5.
 void loadGLFunctions(void* (*getProcAddress)(const char*), const char* backendLabel);
 
+// How many GL contexts this process has created so far (every backend loads GL once per context). The tests use it
+// to check that a test labelled as needing no GL context creates none (tests/support/test_needs.h).
+int glContextsCreated();
+
 }  // namespace glimmer

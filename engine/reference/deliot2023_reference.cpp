@@ -53,14 +53,7 @@ Moments exactBinomialMoments(double N, double p) {
     return m;
 }
 
-LevelSplit distributedSplit(double facetsPerLowerCell, double areaRatio) {
-    double upperWeight = (areaRatio - 1.0) / 3.0;   // (P - P_lo) / (4 P_lo - P_lo)
-    return {(1.0 - upperWeight) * facetsPerLowerCell, upperWeight * 4.0 * facetsPerLowerCell, upperWeight};
-}
-
 double orientationStep(int ratioLevel) { return 1.5707963267948966 * std::exp2(-double(ratioLevel)); }
-
-double gridCellArea(const Grid& grid) { return std::exp2(2.0 * grid.lod + grid.ratioLevel); }
 
 GridSelection selectGrids(double major, double minor, double phi, double screenScale) {
     constexpr int kMaxRatioLevel = 16;

@@ -28,15 +28,6 @@ struct Moments {
 };
 Moments exactBinomialMoments(double N, double p);
 
-// Sec. 4.2: the facets of a footprint of area P between two stratified levels of cell areas P_lo < P_hi
-// (P_hi = 4 P_lo) go to both levels with area-linear weights, Eq. 10: w_hi = (P - P_lo)/(P_hi - P_lo).
-// Returns the trials given to the lower and upper level for a footprint holding `facets` facets at area ratio
-// P / P_lo = areaRatio in [1, 4] (facets of the lower level's cell = facets / areaRatio).
-struct LevelSplit {
-    double lowerTrials, upperTrials, upperWeight;
-};
-LevelSplit distributedSplit(double facetsPerLowerCell, double areaRatio);
-
 // Sec. 5 and 6.1: the 4 grids (scale, ratio level, orientation index) and tetrahedral weights chosen for a
 // footprint with semi-axes major >= minor, major axis angle phi (radians), and screen-space scale.
 struct Grid {
@@ -48,8 +39,6 @@ struct GridSelection {
     std::array<Grid, 4> grids;
 };
 GridSelection selectGrids(double major, double minor, double phi, double screenScale);
-// Cell area in UV of a grid: 4^lod 2^ratioLevel.
-double gridCellArea(const Grid& grid);
 // Orientation step of a ratio level (radians): 90 degrees / 2^k.
 double orientationStep(int ratioLevel);
 

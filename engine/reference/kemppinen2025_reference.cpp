@@ -97,10 +97,6 @@ static glm::uvec4 cellHash(glm::ivec2 s, glm::ivec2 a, int level, int process) {
     return hash4(key);
 }
 
-uint32_t hashComponent(glm::ivec2 s, glm::ivec2 a, int level, int process, int component) {
-    return cellHash(s, a, level, process)[component];
-}
-
 GridPoint gridPoint(glm::ivec2 s, glm::ivec2 a, int level, int process) {
     glm::uvec4 h = cellHash(s, a, level, process);
     const double inv16 = 1.0 / 65536.0;

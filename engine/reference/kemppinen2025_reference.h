@@ -54,7 +54,6 @@ struct GridPoint {
     double roulette, hue;
 };
 GridPoint gridPoint(glm::ivec2 spatialCell, glm::ivec2 angularCell, int level, int process);
-uint32_t hashComponent(glm::ivec2 spatialCell, glm::ivec2 angularCell, int level, int process, int component);
 
 double roulette(double r, double w);                  // Eq. 8
 glm::dvec3 glintColor(double hue, double variation);  // Sec. 3.3.6, mean exactly white

@@ -1,27 +1,28 @@
 #include "render/aov.h"
 
+#include "common/aov_ids.glsl"
 #include "core/error.h"
 
 namespace glimmer {
 
 const std::vector<AovInfo>& aovTable() {
     static const std::vector<AovInfo> table = {
-        {"final", 0, "tone-mapped colour (PNG) or linear radiance (EXR)"},
-        {"albedo", 1, "base colour"},
-        {"normal", 2, "world-space shading normal"},
-        {"depth", 3, "distance from the camera (m)"},
-        {"uv", 4, "UV0 (32-bit)"},
-        {"duvdx", 5, "UV derivative along screen x"},
-        {"duvdy", 6, "UV derivative along screen y"},
-        {"glint", 7, "the NDF term D of the first light alone (linear)"},
-        {"footprint", 8, "footprint: R anisotropy ratio, G LOD, B/A method-specific"},
-        {"tangent", 9, "world-space tangent"},
-        {"material", 10, "R alpha, G metallic, B material id"},
-        {"extra", 11, "method-specific debug channel (see the method's documentation)"},
-        {"ao", 13, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},
-        {"shadow", 12, "visibility of the first light, 0..1 (shadow maps; 0 where the surface faces away from it)"},
-        {"clearcoat", 14, "KHR_materials_clearcoat: R intensity c, G perceptual roughness, B the coat's share c Fc"},
-        {"glintscale", 11, "wang2020: scale used per pixel, red micro, green meso, blue macro (= its extra view)"},
+        {"final", VIEW_FINAL, "tone-mapped colour (PNG) or linear radiance (EXR)"},
+        {"albedo", VIEW_ALBEDO, "base colour"},
+        {"normal", VIEW_NORMAL, "world-space shading normal"},
+        {"depth", VIEW_DEPTH, "distance from the camera (m)"},
+        {"uv", VIEW_UV, "UV0 (32-bit)"},
+        {"duvdx", VIEW_DUVDX, "UV derivative along screen x"},
+        {"duvdy", VIEW_DUVDY, "UV derivative along screen y"},
+        {"glint", VIEW_GLINT, "the NDF term D of the first light alone (linear)"},
+        {"footprint", VIEW_FOOTPRINT, "footprint: R anisotropy ratio, G LOD, B/A method-specific"},
+        {"tangent", VIEW_TANGENT, "world-space tangent"},
+        {"material", VIEW_ROUGHNESS_METALLIC, "R alpha, G metallic, B material id"},
+        {"extra", VIEW_EXTRA, "method-specific debug channel (see the method's documentation)"},
+        {"ao", VIEW_AO, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},
+        {"shadow", VIEW_SHADOW, "visibility of the first light, 0..1 (shadow maps; 0 where the surface faces away from it)"},
+        {"clearcoat", VIEW_CLEARCOAT, "KHR_materials_clearcoat: R intensity c, G perceptual roughness, B the coat's share c Fc"},
+        {"glintscale", VIEW_EXTRA, "wang2020: scale used per pixel, red micro, green meso, blue macro (= its extra view)"},
     };
     return table;
 }

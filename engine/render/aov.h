@@ -1,5 +1,5 @@
-// Output channels of `glimmer render --aov` and the window's debug views. Ids mirror VIEW_* in
-// shaders/common/frame.glsl.
+// Output channels of `glimmer render --aov` and the window's debug views. Ids are the VIEW_* of
+// shaders/common/aov_ids.glsl, which the shaders include too.
 #pragma once
 #include <string>
 #include <vector>

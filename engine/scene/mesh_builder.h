@@ -43,7 +43,6 @@ public:
     // (u) and columns (v) measured on the surface itself. Normals come from the surface's partial derivatives.
     void grid(int cellsS, int cellsT, const std::function<glm::vec3(float, float)>& surface, glm::vec2 uvOffset = {0, 0});
 
-    size_t vertexCount() const { return mesh_.positions.size(); }
     // Finishes the mesh: tangents from the UV gradients (generateTangents, bitangent along +dP/dv).
     MeshData finish();
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/bindings.glsl"
 #include "ui/font.h"
 
 namespace glimmer::ui {
@@ -35,7 +36,7 @@ UiRenderer::UiRenderer(std::filesystem::path shaderRoot) : shaderRoot_(std::move
 gl::Program UiRenderer::build() const {
     gl::Program program(shaderRoot_, {"ui", {{GL_VERTEX_SHADER, "ui/ui.vert"}, {GL_FRAGMENT_SHADER, "ui/ui.frag"}}});
     auto glyphs = packedGlyphTable();
-    glProgramUniform1uiv(program.id(), 1, GLsizei(glyphs.size()), glyphs.data());
+    glProgramUniform1uiv(program.id(), LOCATION_UI_GLYPH_ROWS, GLsizei(glyphs.size()), glyphs.data());
     return program;
 }
 
@@ -71,7 +72,7 @@ void UiRenderer::draw(const DrawList& list, int width, int height) {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     program_.use();
-    glProgramUniform2f(program_.id(), 0, float(width), float(height));
+    glProgramUniform2f(program_.id(), LOCATION_UI_SCREEN_SIZE, float(width), float(height));
     glBindVertexArray(vao_.id());
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(data.size()));  // the one UI draw
     glBindVertexArray(0);

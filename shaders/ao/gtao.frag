@@ -93,7 +93,7 @@ void main() {
                 // Depth filtered bilinearly at the exact sample position (the pass binds a linear sampler): NDC depth is
                 // linear in screen space across a plane, so the sample stays on the slice line and on the surface.
                 // A texel centre off the line would see a plane's own tangent directions out of the slice, whose
-                // angle to V lies above the slice's horizon, and darken every plane (measured: 0.96 on a bare floor).
+                // angle to V lies above the slice's horizon, and darken every plane (docs/measurements.md).
                 float sampleDepth = texture(g_depth, samplePixel / vec2(u_viewport.xy)).r;
                 if (sampleDepth <= 0.0) continue;
                 vec3 delta = viewPosition(samplePixel, sampleDepth) - P;

@@ -78,3 +78,32 @@
 #define UNIT_TAA_HISTORY_GLINT 4     // previous resolve, glint part
 #define UNIT_BLOOM_SOURCE 0
 #define UNIT_EXPOSURE_HDR 0
+#define UNIT_UPSCALE_SOURCE 0        // the window's Catmull-Rom upscale (image/upscale.frag): the display image
+
+// wang2020's post pass (glints/wang2020/wang2020_glint_*.frag, engine/glints/wang2020/wang2020_post_pass.cpp).
+#define UNIT_GLINT_ENVIRONMENT 0     // rgb: environment glints, a: visibility (the lighting pass's glint target)
+#define UNIT_GLINT_LIGHTS 1          // rgb: light glints, a: 1 on glinty pixels
+#define UNIT_GLINT_OCCLUSION_SUMS 2  // the occlusion blur's first pass (along x), read by its second
+#define UNIT_OCCLUDED_GLINT 0        // the glint blur's input: occluded glints
+
+// Environment precompute (engine/environment/, shaders/environment/*.comp): each compute program reads its input
+// at texture unit 0 (and 1) and writes image unit 0 (and 1); image units are a namespace of their own.
+#define UNIT_ENV_INPUT 0             // equirect_to_cube: the map; resample_cube: the source array; radiance_centroid:
+                                     // the source cube's faces as layers
+#define UNIT_ENV_WEIGHTED 0          // prefilter: radiance x solid angle with its box mips (radiance_centroid.comp)
+#define UNIT_ENV_CENTROID 1          // prefilter: luminance-weighted direction and solid angle with its box mips
+#define IMAGE_ENV_OUTPUT 0           // what brdf_lut, procedural_sky, equirect_to_cube, resample_cube, prefilter write
+#define IMAGE_ENV_WEIGHTED 0         // radiance_centroid's two outputs: level 0 of the prefilter's sum chains
+#define IMAGE_ENV_CENTROID 1
+#define IMAGE_PYRAMID_SOURCE 0       // environment/ibl/cube_pyramid.comp: level m - 1 of the cube (read)
+#define IMAGE_PYRAMID_TARGET 1       // ... and level m (written)
+
+// Compute rigs of the tests that write per-sample results for the CPU to read (environment/ibl/ibl_estimator_test.glsl,
+// glints/kemppinen2025/kemppinen2025_sampling_test.glsl): storage buffers at the start of the method range, which the
+// methods these rigs run (kemppinen2025, deliot2023, smooth) leave free.
+#define BINDING_RIG_OUTPUT BINDING_METHOD_FIRST
+#define BINDING_RIG_OUTPUT_2 (BINDING_METHOD_FIRST + 1)
+
+// Uniform locations of the UI overlay (ui/ui.vert, ui/ui.frag; engine/ui/ui_renderer.cpp).
+#define LOCATION_UI_SCREEN_SIZE 0
+#define LOCATION_UI_GLYPH_ROWS 1

@@ -39,19 +39,5 @@ struct GpuMaterial {
 };
 layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBlock { GpuMaterial u_materials[]; };
 
-// Debug views (--aov); mirror the table in engine/render/aov.cpp.
-const int VIEW_FINAL = 0;
-const int VIEW_ALBEDO = 1;
-const int VIEW_NORMAL = 2;
-const int VIEW_DEPTH = 3;
-const int VIEW_UV = 4;
-const int VIEW_DUVDX = 5;
-const int VIEW_DUVDY = 6;
-const int VIEW_GLINT = 7;
-const int VIEW_FOOTPRINT = 8;
-const int VIEW_TANGENT = 9;
-const int VIEW_ROUGHNESS_METALLIC = 10;
-const int VIEW_EXTRA = 11;   // method-specific channel (glintscale, evaluation counters, ...)
-const int VIEW_SHADOW = 12;  // visibility of the first light (shadow maps; 0 where the surface faces away)
-const int VIEW_AO = 13;      // ambient occlusion (shaders/ao/)
-const int VIEW_CLEARCOAT = 14;  // KHR_materials_clearcoat: intensity, roughness, coat weight (common/clearcoat.glsl)
+// Debug views (--aov): VIEW_* ids, one list for the shaders and engine/render/aov.cpp.
+#include "common/aov_ids.glsl"

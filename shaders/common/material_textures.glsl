@@ -1,8 +1,8 @@
 // Material texture lookups shared by the G-buffer and the forward (emissive, transparent) passes.
-// Extreme texture footprints (issue 14, fuzz-hang-100226: a material uvScale of [65538, 2] took minutes per
-// frame). llvmpipe's anisotropic filter is an EWA scan over the texel bounding box of the footprint, which it
-// derives from the coordinates of the 2x2 quad (explicit gradients are ignored) at the mip level of the minor
-// axis, with no cap: its cost grows with the anisotropy and with footprints wider than the texture, and it runs
+// Extreme texture footprints (issue 14, fuzz-hang-100226: a material uvScale of [65538, 2]; docs/cli.md).
+// llvmpipe's anisotropic filter is an EWA scan over the texel bounding box of the footprint, which it derives
+// from the coordinates of the 2x2 quad (explicit gradients are ignored) at the mip level of the minor axis, with
+// no cap: its cost grows with the anisotropy and with footprints wider than the texture, and it runs
 // even for samples a branch masks off. GPUs cap their filter at 16 samples. Quads whose footprint is wider than
 // the texture or more anisotropic than kMaxFilteredAnisotropy therefore hand the filtered lookup a constant
 // coordinate (a one-texel scan) and take a textureLod at the level of the major axis / 16 instead (the

@@ -5,7 +5,7 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(rgba32f, binding = 0) uniform writeonly image2D u_lut;
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly image2D u_lut;
 layout(location = 0) uniform int u_size;
 layout(location = 1) uniform int u_sampleCount;
 

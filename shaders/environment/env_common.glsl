@@ -1,6 +1,7 @@
 // Shared by the environment precompute passes: cube texel directions (GL face conventions, OpenGL 4.5 Table 8.19;
 // CPU mirror: envref::cubeTexelDirection), the equirectangular mapping (envref::directionToEquirect), a
 // Hammersley point set, and NDF importance sampling of half vectors.
+#include "common/bindings.glsl"
 #include "common/brdf.glsl"
 
 // Direction through point `texel` (in texel units, centre = +0.5) of face `face` of a size x size cube.

@@ -4,8 +4,8 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2D u_equirect;          // u repeats, v clamps
-layout(rgba32f, binding = 0) uniform writeonly imageCube u_cube;
+layout(binding = UNIT_ENV_INPUT) uniform sampler2D u_equirect;          // u repeats, v clamps
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly imageCube u_cube;
 layout(location = 0) uniform int u_size;
 
 void main() {

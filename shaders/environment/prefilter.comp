@@ -11,20 +11,19 @@
 // first-order error of a midpoint rule vanishes). The normalisation uses the texel centre (the lobe's own
 // integral, independent of the map).
 // Why not filtered importance sampling (Krivanek & Colbert 2008), which this replaced: with a fixed point set per
-// texel, a lamp of a few texels (studio_small_03: up to 3568 against a mean of 1.9) is hit or missed and read
-// from box mips it is spread over, and the levels came out up to 2x off per texel against quadrature
-// (docs/environment.md, "Prefiltered levels").
+// texel, a lamp of a few very bright texels is hit or missed and read from box mips it is spread over, which puts
+// the levels far off against quadrature (docs/environment.md, "Prefiltered levels").
 // All four channels are filtered: a reflection probe's alpha is its coverage by geometry (sky texels 0), which the
 // lighting pass blends with the distant environment (render/probes/reflection_probes.h); the environment's alpha is 1.
 // One walk serves every lobe of a dispatch (the rungs of one mip, both NDFs): it is refined for the narrowest lobe
 // and for the Beckmann tails and horizons of all of them, and each leaf is weighted once per lobe; the walk, not
-// the weighting, is the cost, so this is 3-4x cheaper than a walk per lobe and no less accurate for any of them.
+// the weighting, is the cost, so this is cheaper than a walk per lobe and no less accurate for any of them.
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
-layout(binding = 1) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
-layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;  // one mip, all layers
+layout(binding = UNIT_ENV_WEIGHTED) uniform sampler2DArray u_weighted;   // radiance x solid angle, box mips (x 4^m: sums)
+layout(binding = UNIT_ENV_CENTROID) uniform sampler2DArray u_centroid;   // rgb luminance x solid angle x direction, a solid angle
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly imageCubeArray u_target;  // one mip, all layers
 layout(location = 0) uniform int u_size;          // face size of the target
 layout(location = 1) uniform vec4 u_alphas;       // the dispatch's roughnesses, ascending; u_count <= LOBE_ALPHAS
 layout(location = 2) uniform int u_ndfMask;       // bit 0 GGX, bit 1 Beckmann
@@ -36,7 +35,7 @@ layout(location = 8) uniform float u_horizonWidth;   // texels wider than this a
 layout(location = 9) uniform int u_count;
 
 // LOBE_ALPHAS (1, 2 or 4, defined by environment/cube_prefilter.cpp) sizes the per-lobe registers: a single-lobe
-// dispatch compiled for 4 roughnesses ran 2.5x slower on llvmpipe (the probes' prefilter).
+// dispatch (the probes' prefilter) compiled for 4 roughnesses pays for the unused ones on llvmpipe.
 #ifndef LOBE_ALPHAS
 #define LOBE_ALPHAS 4
 #endif
@@ -58,8 +57,8 @@ void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     if (id.x >= u_size || id.y >= u_size) return;
     vec3 r = cubeDirection(id.z, vec2(id.xy) + 0.5, u_size);
-    // Capped so that the widest lobes still split their root texels near the axis: with 0.5 rad leaves the
-    // midpoint rule left a constant map 1% off at alpha 0.5. The narrowest lobe sets it.
+    // Capped so that the widest lobes still split their root texels near the axis, where the midpoint rule over
+    // wide leaves would bias even a constant map. The narrowest lobe sets it.
     float lobeWidth = min(2.0 * u_alphas.x, 0.6);
     // D at theta_h = 45 degrees (l on the horizon of n = r) against D at the peak, for the widest lobe.
     bool splitHorizon = false;
@@ -71,8 +70,7 @@ void main() {
     bool beckmannTails = hasNdf(NDF_BECKMANN) && u_alphas[u_count - 1] > 0.05;
     int rootSize = max(u_sourceSize >> u_rootMip, 1);
     // Per NDF, per roughness; the NDF explicit and the loops of constant length LOBE_ALPHAS, so that the arrays
-    // stay in registers (llvmpipe: 8 lobes indexed through one array left some texels at 0, and one lobe compiled
-    // that way ran 1.5x slower than this).
+    // stay in registers (llvmpipe: 8 lobes indexed through one array left some texels at 0, and ran slower).
     vec4 sumGgx[LOBE_ALPHAS], sumBeckmann[LOBE_ALPHAS];
     float weightGgx[LOBE_ALPHAS], weightBeckmann[LOBE_ALPHAS];
     for (int i = 0; i < LOBE_ALPHAS; ++i) {
@@ -101,8 +99,8 @@ void main() {
             // g = tan(theta_h) (1 + tan^2) / alpha^2, far steeper than GGX's 4 / angle, so there the feature size is
             // 4 / g, where the tail still weighs 1e-4 of the peak or more at the texel's near edge (the strictest
             // over the dispatch's Beckmann lobes). Not for the two narrowest rungs (alpha 0.04, 0.05, filtered at
-            // 64 x 64): it doubled their cost and took the worst error only from 5% to 1.6%; from alpha 0.06
-            // (32 x 32) it is needed (studio_small_03: 15% off at alpha 0.09 without).
+            // 64 x 64), whose error it barely changes at twice their cost; from alpha 0.06 (32 x 32) it is needed
+            // (docs/measurements.md).
             float feature = angle;
             if (beckmannTails && angle > lobeWidth) {
                 float t = tan(0.5 * angle);

@@ -88,12 +88,10 @@ vec3 envRung(vec3 direction, int rung, int ndf) {
 }
 
 // Prefiltered radiance around world direction r for NDF roughness alpha, from the rungs around it. The rungs are
-// 1.24x apart in alpha (a mip chain's levels were 4x apart at the low end) and are combined in log radiance, not
-// linearly as trilinear filtering would: a small bright lamp that only the wider lobe reaches grows with
-// roughness roughly as exp(-c / alpha^2) (Beckmann) or alpha^2 (GGX tails), so a linear blend takes in far too
-// much of it (studio_small_03, Beckmann, alpha 0.05, worst pixel against quadrature between the old levels: 71x
-// trilinear, 0.9x geometric; docs/environment.md). Deviation from Karis 2013 (trilinear over the mip chain), for
-// that accuracy; costs three cube fetches per pixel.
+// 1.24x apart in alpha and are combined in log radiance, not linearly as trilinear filtering would: a small bright
+// lamp that only the wider lobe reaches grows with roughness roughly as exp(-c / alpha^2) (Beckmann) or alpha^2
+// (GGX tails), so a linear blend takes in far too much of it (measured: docs/measurements.md). Deviation from Karis
+// 2013 (trilinear over the mip chain), for that accuracy; costs three cube fetches per pixel.
 vec3 envPrefiltered(vec3 r, float alpha, int ndf) {
     float steps = u_envParams.z, alphaMin = u_envParams.w;   // rungs - 1, alpha of rung 1
     alpha = clamp(alpha, 0.0, 1.0);
@@ -107,7 +105,7 @@ vec3 envPrefiltered(vec3 r, float alpha, int ndf) {
     }
     // Position on the ladder, linear in log alpha; a quadratic in (log alpha, log L) through the two rungs around it
     // and the next one (the one below at the top), clamped to the pair's range: a lamp's log radiance is smooth in
-    // log alpha, and a straight line through the pair missed its curvature by up to 29% (docs/environment.md).
+    // log alpha but curved, which a straight line through the pair misses (docs/measurements.md).
     float position = 1.0 + steps * log(alpha / alphaMin) / log(1.0 / alphaMin);
     float lower = clamp(floor(position), 1.0, steps);   // rung below, so lower + 1 <= rungs
     float third = lower + 2.0 <= steps + 1.0 ? lower + 2.0 : lower - 1.0;

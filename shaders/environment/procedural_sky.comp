@@ -5,7 +5,7 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(rgba32f, binding = 0) uniform writeonly imageCube u_cube;
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly imageCube u_cube;
 layout(location = 0) uniform int u_size;
 layout(location = 1) uniform vec3 u_sunDirection;    // unit, towards the sun
 layout(location = 2) uniform vec3 u_sunIrradiance;   // irradiance at normal incidence (colour x intensity)

@@ -2,13 +2,13 @@
 //   u_weighted = L dw (all four channels),  u_centroid = (luminance x dw x direction, dw).
 // Their box mips are then 4^-m times the sums over the texels a mip-m texel covers, so the walk reads each coarse
 // texel's exact integral of L and exact solid angle (the source's own box mips weight a face corner's small texels
-// like its centre's, which over a 4 x 4 face misweights a lamp by up to 5x), and where its light comes from.
+// like its centre's, which misweights a lamp in a corner), and where its light comes from.
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2DArray u_radiance;          // source cube faces as layers
-layout(rgba32f, binding = 0) uniform writeonly image2DArray u_weighted;
-layout(rgba32f, binding = 1) uniform writeonly image2DArray u_centroid;
+layout(binding = UNIT_ENV_INPUT) uniform sampler2DArray u_radiance;          // source cube faces as layers
+layout(rgba32f, binding = IMAGE_ENV_WEIGHTED) uniform writeonly image2DArray u_weighted;
+layout(rgba32f, binding = IMAGE_ENV_CENTROID) uniform writeonly image2DArray u_centroid;
 layout(location = 0) uniform int u_size;                         // face size of source level 0
 
 // Solid angle of the face region [-1, s] x [-1, t] seen from the cube's centre, up to a constant

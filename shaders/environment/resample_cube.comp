@@ -4,8 +4,8 @@
 #include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform samplerCubeArray u_source;
-layout(rgba32f, binding = 0) uniform writeonly imageCubeArray u_target;
+layout(binding = UNIT_ENV_INPUT) uniform samplerCubeArray u_source;
+layout(rgba32f, binding = IMAGE_ENV_OUTPUT) uniform writeonly imageCubeArray u_target;
 layout(location = 0) uniform int u_size;              // face size of the target mip
 layout(location = 1) uniform int u_sourceCube;        // cube of the source array
 layout(location = 2) uniform int u_targetLayerFace;   // target layer-face of face 0

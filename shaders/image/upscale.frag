@@ -2,7 +2,8 @@
 // window with a separable Catmull-Rom cubic (B = 0, C = 0.5 in Mitchell & Netravali 1988): interpolating, sharper
 // than bilinear, 4 x 4 texels. Filtering happens on display-encoded values, as post-tone-mapping upscalers do; the
 // negative lobes' overshoot is clamped to [0, 1]. engine/render/image/upscale.cpp holds the CPU reference of this filter.
-layout(binding = 0) uniform sampler2D t_source;
+#include "common/bindings.glsl"
+layout(binding = UNIT_UPSCALE_SOURCE) uniform sampler2D t_source;
 layout(location = 0) uniform ivec2 u_sourceSize;
 layout(location = 1) uniform vec2 u_sourceFromTarget;   // source size / target size
 layout(location = 0) out vec4 o_color;

@@ -21,7 +21,7 @@ void main() {
             // An explicit isotropic level (the larger axis): a mask needs no sharper level. llvmpipe's filter
             // scans the quad's coordinate differences even at an explicit level, and even where this branch is
             // masked off (material_textures.glsl), so a footprint wider than the texture reads its 1x1 level at a
-            // constant coordinate: a uvScale of 65538 took minutes per cascade before.
+            // constant coordinate, which that scan cannot stretch over a huge uvScale.
             vec2 uv = (u_uvTransform * vec3(v_uv, 1.0)).xy;
             TextureFootprint footprint = textureFootprint(uv);
             bool wide = !(footprint.major <= 1.0);

@@ -2,7 +2,8 @@
 // four per word: row r of glyph g is byte r % 4 of u_glyphRows[g * 2 + r / 4]; bit (4 - column) is lit.
 const int FIRST_GLYPH = 32;
 const int GLYPH_COUNT = 95;
-layout(location = 1) uniform uint u_glyphRows[GLYPH_COUNT * 2];
+#include "common/bindings.glsl"
+layout(location = LOCATION_UI_GLYPH_ROWS) uniform uint u_glyphRows[GLYPH_COUNT * 2];
 
 in vec2 v_fontPixel;
 flat in vec4 v_color;

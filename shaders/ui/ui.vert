@@ -4,7 +4,8 @@ layout(location = 0) in vec4 a_rect;     // x, y, width, height in pixels
 layout(location = 1) in uint a_color;    // RGBA8 packed, red in the low byte
 layout(location = 2) in int a_glyph;     // ASCII code, or -1 for a filled rectangle
 layout(location = 3) in float a_scale;   // screen pixels per font pixel
-layout(location = 0) uniform vec2 u_screenSize;
+#include "common/bindings.glsl"
+layout(location = LOCATION_UI_SCREEN_SIZE) uniform vec2 u_screenSize;
 
 out vec2 v_fontPixel;
 flat out vec4 v_color;

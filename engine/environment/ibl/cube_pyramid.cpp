@@ -3,16 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "common/bindings.glsl"
 
 namespace glimmer::ibl {
-
-PyramidFilter parsePyramidFilter(const std::string& name) {
-    if (name == "box") return PyramidFilter::Box2;
-    if (name == "gauss4") return PyramidFilter::Gauss4;
-    if (name == "gauss6") return PyramidFilter::Gauss6;
-    throw Error("pyramid filter: unknown '" + name + "' (known: box, gauss4, gauss6)");
-}
 
 const char* pyramidFilterName(PyramidFilter filter) {
     switch (filter) {
@@ -43,8 +36,8 @@ void CubePyramidBuilder::build(GLuint cube, int faceSize, PyramidFilter filter) 
     int levels = 1 + int(std::floor(std::log2(double(faceSize))));
     for (int level = 1; level < levels; ++level) {
         int size = std::max(1, faceSize >> level);
-        glBindImageTexture(0, cube, level - 1, GL_TRUE, 0, GL_READ_ONLY, format_);
-        glBindImageTexture(1, cube, level, GL_TRUE, 0, GL_WRITE_ONLY, format_);
+        glBindImageTexture(IMAGE_PYRAMID_SOURCE, cube, level - 1, GL_TRUE, 0, GL_READ_ONLY, format_);
+        glBindImageTexture(IMAGE_PYRAMID_TARGET, cube, level, GL_TRUE, 0, GL_WRITE_ONLY, format_);
         glDispatchCompute(GLuint((size + 7) / 8), GLuint((size + 7) / 8), 6);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

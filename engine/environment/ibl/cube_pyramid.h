@@ -12,7 +12,6 @@
 namespace glimmer::ibl {
 
 enum class PyramidFilter { Box2 = 2, Gauss4 = 4, Gauss6 = 6 };
-PyramidFilter parsePyramidFilter(const std::string& name);   // box | gauss4 | gauss6; Error otherwise
 const char* pyramidFilterName(PyramidFilter filter);
 
 class CubePyramidBuilder {

@@ -14,7 +14,6 @@ public:
     static constexpr int kNoiseUnit = UNIT_METHOD_FIRST;
     Deliot2023Resources();
     void bind() override;
-    GLuint noiseTexture() const { return noise_.id(); }
 
 private:
     gl::Texture noise_;

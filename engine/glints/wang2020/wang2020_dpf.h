@@ -22,8 +22,8 @@ constexpr std::array<float, 8> kRoughnessSamples = {0.02f, 0.04f, 0.1f, 0.2f, 0.
 constexpr float kBaseGamma = 1.0f * kDegree;  // generation cone half-angle (Sec. 4.4)
 
 // The distribution of the particle normals. The paper uses Beckmann; Glimmer's materials are GGX by default, and a
-// Beckmann DPF under a GGX material puts 24-29 % more of the highlight's energy near its centre than the GGX
-// reference (README "The glint material", wang2020's mean), so the tables follow the material's NDF.
+// Beckmann DPF under a GGX material concentrates the highlight's energy near its centre, away from the GGX
+// reference (docs/methods.md, "The glint material", wang2020's mean), so the tables follow the material's NDF.
 enum class ParticleNdf { Beckmann, Ggx };
 const char* particleNdfName(ParticleNdf ndf);
 

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "common/bindings.glsl"
 #include "core/error.h"
 #include "gl/pipeline_state.h"
 
@@ -73,13 +74,13 @@ public:
         targets_->resize(frame.width, frame.height);
         program_.use();
         setKernel(program_, radiusOf(tapsOf(frame, "blur_occlusion")));
-        glBindTextureUnit(0, frame.lightingTargets.at(0));   // wang2020Method()'s lightingTargets, in order
-        glBindTextureUnit(1, frame.lightingTargets.at(1));
+        glBindTextureUnit(UNIT_GLINT_ENVIRONMENT, frame.lightingTargets.at(0));   // wang2020Method()'s lightingTargets, in order
+        glBindTextureUnit(UNIT_GLINT_LIGHTS, frame.lightingTargets.at(1));
         glBindVertexArray(frame.emptyVao);
         gl::fullscreenState(targets_->occlusionSumsFbo.id(), frame.width, frame.height).apply();
         glProgramUniform1i(program_.id(), 0, 0);   // u_pass 0: sums along x
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        glBindTextureUnit(2, targets_->occlusionSums.id());
+        glBindTextureUnit(UNIT_GLINT_OCCLUSION_SUMS, targets_->occlusionSums.id());
         gl::fullscreenState(targets_->occludedGlintFbo.id(), frame.width, frame.height).apply();
         glProgramUniform1i(program_.id(), 0, 1);   // u_pass 1: along y, divide, multiply, add the light glints
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -100,7 +101,7 @@ public:
     void execute(const MethodPassFrame& frame) override {
         program_.use();
         setKernel(program_, radiusOf(tapsOf(frame, "blur_glints")));
-        glBindTextureUnit(0, targets_->occludedGlint.id());
+        glBindTextureUnit(UNIT_OCCLUDED_GLINT, targets_->occludedGlint.id());
         glBindVertexArray(frame.emptyVao);
         // Added with this frame's weight (a running mean for accumulating IBL modes); HDR alpha kept.
         gl::PipelineState state = gl::fullscreenState(frame.hdrFramebuffer, frame.width, frame.height);

@@ -95,7 +95,6 @@ std::vector<std::pair<std::string, double>> Wang2020Resources::update(const Para
         if (fetchedSets_.insert(key.ndf).second) generationMs += std::max(generation.elapsedMs(), 1e-3);
         tables_[key] = wang2020::accumulateDpf(wang2020::extractDpf(*set, key.roughness), gamma * wang2020::kDegree);
         extracted.push_back(key);
-        ++extractionsRun_;
     }
     for (auto it = tables_.begin(); it != tables_.end();)
         it = std::find(wanted.begin(), wanted.end(), it->first) == wanted.end() ? tables_.erase(it) : std::next(it);
@@ -146,12 +145,6 @@ void Wang2020Resources::uploadStack() {
     std::vector<uint32_t> buffer = {uint32_t(slots_.size()), uint32_t(res.thetaI), 0u, 0u};
     buffer.insert(buffer.end(), materialSlot_.begin(), materialSlot_.end());
     materialSlots_ = gl::createBuffer(GLsizeiptr(buffer.size() * sizeof(uint32_t)), buffer.data(), 0);
-}
-
-std::vector<float> Wang2020Resources::slotRoughness() const {
-    std::vector<float> r;
-    for (const TableKey& key : slots_) r.push_back(key.roughness);
-    return r;
 }
 
 void Wang2020Resources::bind() {

@@ -32,11 +32,6 @@ public:
     float roughness() const { return roughness_; }
     float gamma() const { return gamma_; }
     uint64_t dpfVersion() const { return dpfVersion_; }
-    // The roughness of each table of the stack in slot order, each material's slot, and the number of DPF
-    // extractions run since construction (tests of per-material editing).
-    std::vector<float> slotRoughness() const;
-    const std::vector<uint32_t>& materialSlots() const { return materialSlot_; }
-    int extractionsRun() const { return extractionsRun_; }
 
 private:
     struct TableKey {
@@ -57,7 +52,6 @@ private:
     gl::Texture dpf_, dpfStack_;
     gl::Buffer quadtree_, materialSlots_;
     uint64_t dpfVersion_ = 0;
-    int extractionsRun_ = 0;
 };
 
 std::unique_ptr<GlintMethodResources> createWang2020Resources();

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "common/bindings.glsl"
+
 namespace glimmer {
 
 UpscalePass::UpscalePass(const std::filesystem::path& shaderRoot)
@@ -32,7 +34,7 @@ void UpscalePass::draw(GLuint sourceTexture, GLuint sourceFramebuffer, int sourc
     program_.use();
     glUniform2i(0, sourceW, sourceH);
     glUniform2f(1, float(sourceW) / float(targetW), float(sourceH) / float(targetH));
-    glBindTextureUnit(0, sourceTexture);
+    glBindTextureUnit(UNIT_UPSCALE_SOURCE, sourceTexture);
     glBindVertexArray(vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_SCISSOR_TEST);

@@ -4,12 +4,14 @@
 // [1 5 10 10 5 1]/32 (the "pyramids of Gaussians" of Adelson 1981 with 4x4 and 6x6 kernels).
 // Deviation: taps outside the face are clamped to the face edge (no filtering across cube faces).
 // CPU reference: engine/environment/ibl/cube_pyramid.cpp downsampleCubeFaceReference.
+#include "common/bindings.glsl"
+
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #ifndef PYRAMID_FORMAT
 #define PYRAMID_FORMAT rgba16f
 #endif
-layout(binding = 0, PYRAMID_FORMAT) uniform readonly imageCube u_source;
-layout(binding = 1, PYRAMID_FORMAT) uniform writeonly imageCube u_destination;
+layout(binding = IMAGE_PYRAMID_SOURCE, PYRAMID_FORMAT) uniform readonly imageCube u_source;
+layout(binding = IMAGE_PYRAMID_TARGET, PYRAMID_FORMAT) uniform writeonly imageCube u_destination;
 layout(location = 0) uniform int u_kernel;   // 2, 4 or 6
 
 float tapWeight(int k) {

@@ -24,7 +24,7 @@ layout(location = 10) uniform vec3 u_f0;
 layout(location = 11) uniform vec3 u_diffuseAlbedo;
 layout(location = 12) uniform int u_glinty;
 
-layout(std430, binding = 8) writeonly buffer EstimateBlock { vec4 o_estimates[]; };
+layout(std430, binding = BINDING_RIG_OUTPUT) writeonly buffer EstimateBlock { vec4 o_estimates[]; };
 
 void main() {
     uint index = gl_GlobalInvocationID.x;

@@ -191,7 +191,7 @@ GlintPixel glintSetup(GlintSurface s) {
     // Eq. 3's "/ N". vertex (authors' supplemental, where the density randomization comes from): each vertex's
     // count over its own randomized facets, weighted by barycentric x tetrahedral weight, which keeps E[D_P] = D
     // (the weights sum to 1) and keeps each vertex's clumping. footprint: the summed count over the footprint's
-    // total, also mean-preserving, which averages the randomization away (about 3x lower CV at the defaults).
+    // total, also mean-preserving, which averages the randomization away (a much lower CV: docs/deliot2023.md).
     bool perVertex = P_NORMALIZATION < 0.5;
     for (int v = 0; v < DELIOT_VERTICES; ++v)
         px.countWeight[v] = perVertex ? (vertexFacets[v] > 0.0 ? barycentric[v] / vertexFacets[v] : 0.0)

@@ -17,8 +17,8 @@ layout(location = 3) uniform int u_ndf;
 layout(location = 4) uniform uint u_sampleCount;
 layout(location = 5) uniform uint u_seedOffset;
 
-layout(std430, binding = 8) writeonly buffer SampleBlock { vec4 o_samples[]; };   // h.xyz, pdf
-layout(std430, binding = 9) writeonly buffer PriorBlock { vec2 o_priors[]; };
+layout(std430, binding = BINDING_RIG_OUTPUT) writeonly buffer SampleBlock { vec4 o_samples[]; };   // h.xyz, pdf
+layout(std430, binding = BINDING_RIG_OUTPUT_2) writeonly buffer PriorBlock { vec2 o_priors[]; };
 
 void main() {
     uint index = gl_GlobalInvocationID.x;

@@ -4,7 +4,8 @@
 // 2D kernel u_weights[|i|] u_weights[|j|] (binomial, see glint_occlusion_blur.frag), renormalised over the taps
 // inside the image. The paper blurs "the computed glints" of the environment path; we blur the light glints
 // (Sec. 5) with the same kernel.
-layout(binding = 0) uniform sampler2D t_occludedGlint;     // rgb: occluded glints, a: delta
+#include "common/bindings.glsl"
+layout(binding = UNIT_OCCLUDED_GLINT) uniform sampler2D t_occludedGlint;     // rgb: occluded glints, a: delta
 
 layout(location = 1) uniform int u_radius;
 layout(location = 2) uniform float u_weights[16];

@@ -8,9 +8,10 @@
 // Deviation: only glinty pixels (mask m) contribute and the weights are renormalised over them, so visibility does
 // not bleed in from the background or from other materials, which have none; the paper does not say how it
 // treats them. Taps outside the image are skipped the same way.
-layout(binding = 0) uniform sampler2D t_glintEnvironment;  // rgb: environment glints, a: visibility (0 or 1)
-layout(binding = 1) uniform sampler2D t_glintLights;       // rgb: light glints, a: 1 on glinty pixels
-layout(binding = 2) uniform sampler2D t_occlusionSums;     // pass 1: the output of pass 0
+#include "common/bindings.glsl"
+layout(binding = UNIT_GLINT_ENVIRONMENT) uniform sampler2D t_glintEnvironment;  // rgb: environment glints, a: visibility (0 or 1)
+layout(binding = UNIT_GLINT_LIGHTS) uniform sampler2D t_glintLights;       // rgb: light glints, a: 1 on glinty pixels
+layout(binding = UNIT_GLINT_OCCLUSION_SUMS) uniform sampler2D t_occlusionSums;     // pass 1: the output of pass 0
 
 layout(location = 0) uniform int u_pass;
 layout(location = 1) uniform int u_radius;

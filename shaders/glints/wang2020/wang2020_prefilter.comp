@@ -9,11 +9,10 @@
 //   1 "cone" (ours, optional): the same integral with P written as the reflection density integrated over the
 //     gamma-cone (P(i, o) = int_cone p(o'|i) do', which is how our DPF tables are built): o'_j uniform in the cone,
 //     m_j ~ D(m)(m.n), i_j = reflect(o'_j, m_j); p(o'|i) / pdf(i|o') = 4 (o'.m) / (4 (i.m)) = 1, so each sample weighs
-//     sigma L(i_j) M(i_j, o). At grazing view angles the literal form's 64 samples came out 14-49 % low (theta_o 76.5-85.5,
-//     alpha 0.1, constant map: the cone-blurred P and the unblurred NDF samples disagree, a heavy tail); the cone
-//     form stays within 1 % of the quadrature there up to 76.5 degrees (tests/wang2020_test.cpp). Under maps with tiny
-//     very bright lamps neither 64-sample estimate is reliable and the cone form measured lower on the top view of
-//     the studio map (0.57-0.69 of the expectation against 0.96-0.97), so the paper's form stays the default.
+//     sigma L(i_j) M(i_j, o). At grazing view angles the literal form's 64 samples come out low (the cone-blurred P and
+//     the unblurred NDF samples disagree, a heavy tail), where the cone form follows the quadrature
+//     (tests/wang2020_test.cpp). Under maps with tiny very bright lamps neither 64-sample estimate is reliable and the
+//     cone form reads lower on the studio map, so the paper's form stays the default (docs/wang2020.md).
 //     engine/glints/wang2020_reference.cpp has both on the CPU.
 // Deviations: F is left out of M (Eq. 11) and applied at run time with Schlick at n.o, because F0 is a per-pixel
 // base colour here (the paper prefilters per material). M carries 1 / (h.n) instead of 1 / (i.n) with the cosine

@@ -1,4 +1,4 @@
-#include "app/window_resolution.h"
+#include "app/walkthrough/window_resolution.h"
 
 #include <algorithm>
 #include <cstdio>

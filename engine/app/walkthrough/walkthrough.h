@@ -1,5 +1,9 @@
-// The walkthrough window behind `glimmer view`: input (WASD + mouse look, keys), the control panel, shader hot
-// reload, screenshots, and one frame = Renderer::render + the UI overlay presented through the window.
+// The walkthrough window behind `glimmer view`. The window loop (window_loop.cpp) ties together the parts in this
+// folder, one job each: input.* (keys, mouse, input scripts), camera_motion.* (walking, flying, camera paths),
+// method_files.* (shader hot reload, user method files), split_view.* (two methods side by side), frame_driver.*
+// (the renderer calls and the accumulation of Monte Carlo IBL modes), overlay.* (errors, stats strip, notices),
+// present.* (the window image and screenshots), window_settings.* and window_resolution.* (the window's defaults
+// and render scale).
 #pragma once
 #include <optional>
 #include <string>
@@ -21,7 +25,7 @@ struct ViewOptions {
     std::optional<std::string> inputScript; // --input-script: timed key events replayed (ui/input_script.h)
     std::optional<std::string> pathFile;    // --path: camera path played by P and written by R
     // Resolution (render/dynamic_resolution.h): unset = defaults (software renderers: target 12 fps with dynamic
-    // resolution from scale 0.5, except for --screenshot runs, which stay at scale 1; GPUs: scale 1).
+    // resolution from scale 0.25, except for --screenshot runs, which stay at scale 1; GPUs: scale 1).
     std::optional<float> renderScale;       // --render-scale: start (or fixed) scale in [0.25, 1]
     std::optional<float> targetFps;         // --target-fps: > 0 adapts the scale, 0 keeps it fixed
     bool printStats = false;                // --stats: frame-time JSON on stdout at exit

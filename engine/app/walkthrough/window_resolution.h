@@ -17,9 +17,9 @@ namespace glimmer {
 
 class WindowResolution {
 public:
-    // The start scale is where the atrium settles on a 2-core llvmpipe machine at 1280x720: starting at 0.5 cost
-    // about 17 frames of 120-200 ms on the way down (the controller changes at most 15% every 4 frames); faster
-    // machines raise it from there.
+    // The start scale is where the atrium settles on a 2-core llvmpipe machine at 1280x720: a higher start costs many
+    // slow frames on the way down, as the controller changes the scale by at most 15% every 4 frames
+    // (docs/measurements.md); faster machines raise it from there.
     static constexpr float kSoftwareTargetFps = 12.0f, kSoftwareStartScale = 0.25f;
 
     // Defaults per renderer: software renderers adapt towards kSoftwareTargetFps from kSoftwareStartScale (unless
