@@ -73,6 +73,63 @@ struct CoreScan {
     }
 };
 
+// Builds the DOM like nlohmann's own parser, but keeps strings longer than kLongString as null (data: URIs of
+// buffers and images, which tinygltf decodes: a 1 GiB model must not be held twice). Written as a SAX handler
+// because nlohmann's callback parser rescans the enclosing array at the end of every object (quadratic: 100k
+// objects took seconds).
+class DomWithoutLongStrings : public nlohmann::json_sax<GltfValue> {
+public:
+    explicit DomWithoutLongStrings(GltfValue& root) : root_(root) {}
+    bool null() override { return add(GltfValue()); }
+    bool boolean(bool v) override { return add(GltfValue(v)); }
+    bool number_integer(number_integer_t v) override { return add(GltfValue(v)); }
+    bool number_unsigned(number_unsigned_t v) override { return add(GltfValue(v)); }
+    bool number_float(number_float_t v, const string_t&) override { return add(GltfValue(v)); }
+    bool string(string_t& v) override { return add(v.size() > kLongString ? GltfValue() : GltfValue(std::move(v))); }
+    bool binary(binary_t&) override { return add(GltfValue()); }
+    bool start_object(std::size_t) override { return push(GltfValue::object()); }
+    bool key(string_t& k) override {
+        key_ = std::move(k);
+        return true;
+    }
+    bool end_object() override { return pop(); }
+    bool start_array(std::size_t) override { return push(GltfValue::array()); }
+    bool end_array() override { return pop(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+private:
+    // Places a value in the container being built (or as the root) and returns where it went.
+    GltfValue* place(GltfValue&& value) {
+        if (stack_.empty()) {
+            root_ = std::move(value);
+            return &root_;
+        }
+        GltfValue& parent = *stack_.back();
+        if (parent.is_array()) {
+            parent.push_back(std::move(value));
+            return &parent.back();
+        }
+        GltfValue& slot = parent[key_];
+        slot = std::move(value);
+        return &slot;
+    }
+    bool add(GltfValue&& value) {
+        place(std::move(value));
+        return true;
+    }
+    bool push(GltfValue&& container) {
+        stack_.push_back(place(std::move(container)));
+        return true;
+    }
+    bool pop() {
+        stack_.pop_back();
+        return true;
+    }
+    GltfValue& root_;
+    std::vector<GltfValue*> stack_;
+    std::string key_;
+};
+
 }  // namespace
 
 GltfValue parseGltfJson(const unsigned char* bytes, size_t size, bool binary, const std::string& file) {
@@ -87,13 +144,10 @@ GltfValue parseGltfJson(const unsigned char* bytes, size_t size, bool binary, co
         json = bytes + 20;
         length = chunkLength;
     }
-    // Drops the long strings (data: URIs) while parsing: a 1 GiB model must not be held twice.
-    auto dropLongStrings = [](int, GltfValue::parse_event_t event, GltfValue& parsed) {
-        if (event == GltfValue::parse_event_t::value && parsed.is_string() && parsed.get_ref<const std::string&>().size() > kLongString)
-            parsed = GltfValue();   // kept as null where tinygltf reads the string itself
-        return true;
-    };
-    GltfValue root = GltfValue::parse(json, json + length, dropLongStrings, false);
+    GltfValue root;
+    DomWithoutLongStrings builder(root);
+    const bool parsed = GltfValue::sax_parse(json, json + length, &builder, GltfValue::input_format_t::json, true);
+    if (!parsed) root = GltfValue(GltfValue::value_t::discarded);
     if (root.is_discarded() || !root.is_object()) throw Error(file + ": invalid glTF JSON");
     return root;
 }
