@@ -11,6 +11,7 @@
 #include "common/clearcoat.glsl"
 #include "common/light_incidence.glsl"
 #include "common/plane_aware_upsample.glsl"
+#include "common/method_output_check.glsl"
 #ifdef SHADOWS
 #include "common/shadows.glsl"
 #endif
@@ -84,6 +85,10 @@ vec3 finiteOrZero(vec3 c) {
     bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
     return any(bad) ? vec3(0.0) : c;
 }
+
+// Radiance as it may reach the frame: finite and not negative (a negative D gave negative radiance in the EXR and
+// a white PNG). Counted before this in flushMethodOutput.
+vec3 plausibleRadiance(vec3 c) { return max(finiteOrZero(c), vec3(0.0)); }
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -214,6 +219,8 @@ void main() {
     }
     float firstLightD = 0.0;
     float firstLightVisibility = 0.0;
+    MethodOutputTally tally = methodOutputTally();
+    const bool sampledPixel = methodOutputSampled(pixel);
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
     vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
     int lightCount = int(u_exposure.y);
@@ -247,10 +254,12 @@ void main() {
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        if (glinty) tallyColorD(tally, colorD, sampledPixel, h, s.alpha, s.ndf);
         float D = dot(colorD, vec3(1.0 / 3.0));
         vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
 #else
         float D = glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        if (glinty) tallyD(tally, D, sampledPixel, h, s.alpha, s.ndf);
         vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
 #endif
         if (i == 0) firstLightD = D;
@@ -293,14 +302,17 @@ void main() {
         case VIEW_CLEARCOAT: result = coatTexelView; break;
         default: result = vec4(radiance, 1.0); break;
     }
-    o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+    // Debug views pass signed values through (normals); the final radiance is finite and non-negative.
+    vec3 shown = view == VIEW_FINAL ? plausibleRadiance(result.rgb) : finiteOrZero(result.rgb);
+    flushMethodOutput(tally, view == VIEW_FINAL ? result.rgb : vec3(0.0));
+    o_color = vec4(shown, isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
     // Methods with a glint post pass add their (blurred) glints after this pass: TAA clips them with the rest.
     bool finiteResult = all(equal(o_color.rgb, result.rgb));
-    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
+    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? plausibleRadiance(glintPart) : vec3(0.0), 0.0);
 #ifdef GLINT_POST_PASS
     bool postGlints = view == VIEW_FINAL && glinty;
-    o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
+    o_glintEnvironment = postGlints ? vec4(plausibleRadiance(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
                                     : vec4(0.0);
-    o_glintLights = postGlints ? vec4(finiteOrZero(lightGlints), 1.0) : vec4(0.0);
+    o_glintLights = postGlints ? vec4(plausibleRadiance(lightGlints), 1.0) : vec4(0.0);
 #endif
 }

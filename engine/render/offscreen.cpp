@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "glints/methods.h"
 #include "render/aov.h"
+#include "render/frame_size_limit.h"
 #include "render/image/supersample.h"
 #include "render/shadow_maps.h"
 #include "render/upscale.h"
@@ -22,6 +23,8 @@ OffscreenSession::OffscreenSession(const RenderRequest& request) {
     baseScene_.camera(request.camera);  // validate --camera before creating a context
     findGlintMethod(request.settings.method);
     context_ = createHeadlessContext(request.backend);
+    sizeLimit_ = frameSizeLimit();
+    checkFrameSize(request.width, request.height, sizeLimit_, "--size");   // before any target is allocated
     scene_ = baseScene_;
     applySceneOverrides(request.settings, scene_);
     gpuScene_ = std::make_unique<GpuScene>(scene_);
@@ -49,6 +52,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     if (int(request.settings.common_("aa")) == 2 && request.settings.debugView == 0)
         return image::supersampledRender(request, [this](const RenderRequest& r) { return render(r); });
     context_->makeCurrent();
+    checkFrameSize(request.width, request.height, sizeLimit_, "--size");
     scene_ = baseScene_;
     applySceneOverrides(request.settings, scene_);
     gpuScene_->updateMaterialsAndLights(scene_);
@@ -70,6 +74,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     const int renderW = std::max(1, int(std::lround(request.renderScale * float(request.width))));
     const int renderH = std::max(1, int(std::lround(request.renderScale * float(request.height))));
     renderer_->setOutputSize(request.width, request.height);
+    renderer_->methodOutput().reset();
     for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
         Stopwatch clock;
         double cpuStart = processCpuMs();
@@ -107,8 +112,19 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     std::string aovName = "final";
     for (const AovInfo& aov : aovTable())
         if (aov.viewId == request.settings.debugView) aovName = aov.name;
-    size_t nonFinite = 0;
+    // What the method produced before the lighting pass's clamp (render/method_output_check.h), over every frame
+    // and sample of this render; non_finite_values adds what reached the image (none: the pass zeroes them).
+    const MethodOutputCounts output = renderer_->methodOutput().read();
+    size_t nonFinite = size_t(output.nonFiniteRadiance);
     for (float v : result.hdr) nonFinite += !std::isfinite(v);
+    if (output.anyProblem() && warnedMethods_.insert(request.settings.method).second) {
+        std::string lines = output.describe(request.settings.method);
+        for (size_t start = 0; start < lines.size();) {
+            size_t end = std::min(lines.find('\n', start), lines.size());
+            log::warn(lines.substr(start, end - start));
+            start = end + 1;
+        }
+    }
     result.stats = {
         {"resolution", {request.width, request.height}},
         {"render_resolution", {renderW, renderH}},
@@ -146,6 +162,12 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         {"counts", {{"meshes", scene_.meshes.size()}, {"instances", scene_.instances.size()},
                     {"triangles", scene_.triangleCount()}, {"materials", scene_.materials.size()},
                     {"lights", scene_.lights.size()}, {"non_finite_values", nonFinite}}},
+        {"method_output", {{"non_finite_d", output.nonFiniteD}, {"negative_d", output.negativeD},
+                           {"non_finite_radiance", output.nonFiniteRadiance},
+                           {"negative_radiance", output.negativeRadiance},
+                           {"sampled_evaluations", output.sampledEvaluations},
+                           {"far_above_smooth_fraction", output.farAboveSmoothFraction()},
+                           {"implausible", output.implausible()}}},
         // The last G-buffer pass after frustum culling of the meshes' chunks (back-face culling not counted).
         {"gbuffer_draw", {{"chunks", gpuScene_->lastDrawStats().chunksTotal},
                           {"chunks_drawn", gpuScene_->lastDrawStats().chunksDrawn},

@@ -43,6 +43,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     probes_ = std::make_unique<ReflectionProbes>(shaderRoot_);
     ambientOcclusion_ = std::make_unique<AmbientOcclusion>();
     shadowMaps_ = std::make_unique<ShadowMaps>();
+    methodOutput_.bind();   // also for probe captures before the first frame
     buildPasses();
 }
 
@@ -321,6 +322,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, methodParams_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIAL_METHOD_PARAMS, materialMethodParams_.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_IBL_PARAMS, iblParams_.id());
+    methodOutput_.bind();
 
     const FrameContext frame{scene,        gpuScene,     camera,   settings_, targets_,
                              environment_, methodResources_.get(), iblResources_.get(),

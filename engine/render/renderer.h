@@ -17,6 +17,7 @@
 #include "render/environment.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
+#include "render/method_output_check.h"
 #include "render/passes/pass.h"
 #include "render/passes/pass_timer.h"
 #include "render/reflection_probes.h"
@@ -109,6 +110,8 @@ public:
     uint32_t frameIndex() const { return frameIndex_; }
     // The shadow maps of the last frame: views in use and what the shadow passes rendered (--stats, tests).
     const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
+    // What the glint method produced since the last reset (render/method_output_check.h): read() waits for the GPU.
+    MethodOutputCheck& methodOutput() { return methodOutput_; }
 
     // The image pipeline (docs/image.md). Auto exposure moves towards each frame's metered value with this
     // weight (1: at once, the offscreen default; the window passes 1 - exp(-dt / time constant)).
@@ -135,6 +138,7 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     std::unique_ptr<ShadowMaps> shadowMaps_;
+    MethodOutputCheck methodOutput_;   // bound for the lighting pass every frame
     std::unique_ptr<ShadowMapPass> sunShadowPass_, pointShadowPass_;
     std::unique_ptr<GBufferPass> gbufferPass_;
     std::unique_ptr<AmbientOcclusion> ambientOcclusion_;   // targets and baked sky visibility of the AO passes

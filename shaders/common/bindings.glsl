@@ -11,6 +11,7 @@
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
+#define BINDING_METHOD_OUTPUT 5      // storage (not the uniform 5 above): counters of what the glint method produced (render/method_output_check.h)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
 #define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
