@@ -17,7 +17,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/image_io.h"
-#include "render/frame_size_limit.h"
+#include "render/frame/frame_size_limit.h"
 #include "render/mesh_chunks.h"
 #include "scene/builtin_scenes.h"
 #include "ui/input_script.h"

@@ -134,7 +134,7 @@ TEST(HostileText, TheSizeLimitIsCheckedBeforeReadingAndNamed) {
 TEST(HostileText, EveryInputFileGoesThroughTheOneReader) {
     const fs::path engine = fs::path(GLIMMER_TEST_DIR) / ".." / "engine";
     const std::set<std::string> ownReaders = {"core/files.cpp", "core/image_io.cpp", "core/cache_file.cpp",
-                                              "render/frame_size_limit.cpp"};
+                                              "render/frame/frame_size_limit.cpp"};
     // std::ifstream / fopen / the old readTextFile read files; a parse_event_t callback parser rescans arrays
     // (quadratic on hostile JSON: 100k materials took seconds).
     const char* tokens[] = {"std::ifstream", "fopen(", "readTextFile(", "parse_event_t"};
@@ -205,7 +205,7 @@ TEST(HostileText, HandParsersAcceptWhatTheRegularExpressionsDid) {
     EXPECT_FALSE(glimmer::gl::parseIncludeLine(std::string(1 << 20, ' ') + "float x;", include));
     // The driver log mapping: Mesa and NVIDIA forms, and a 30-digit source number passed through (no stoul throw).
     std::string mapped = glimmer::gl::mapDriverLog("0:41(2): error: x\n0(7) : error C0000: y\n" + std::string(30, '9') + ":1(1): z\n",
-                                                   {kShaders / "lighting.frag"}, kShaders);
+                                                   {kShaders / "frame" / "lighting.frag"}, kShaders);
     EXPECT_NE(mapped.find("lighting.frag:41: error: x"), std::string::npos) << mapped;
     EXPECT_NE(mapped.find("lighting.frag:7: error C0000: y"), std::string::npos) << mapped;
     EXPECT_NE(mapped.find(std::string(30, '9') + ":1(1): z"), std::string::npos) << mapped;

@@ -1,4 +1,4 @@
-// The header block of a user method file (glints/user_methods.h, docs/user_methods.md): a GLSL comment opening with
+// The header block of a user method file (glints/user/user_methods.h, docs/user_methods.md): a GLSL comment opening with
 // "/* glimmer-method" whose "key: value" lines declare the method's name, citation, parameters, material mapping
 // and convergence values. GL-free, so the method-file fuzz target can link it. Every line is parsed by hand in
 // time linear in its length (no backtracking regular expression: a 40 kB meaning must not exhaust the stack).
