@@ -12,8 +12,10 @@ struct MethodOutputTally {
 
 MethodOutputTally methodOutputTally() { return MethodOutputTally(0u, 0u, 0u, 0u); }
 
-// Every 4th pixel in x and y measures D against D_smooth (render/frame/method_output_check.h says why 4 x + 1).
-bool methodOutputSampled(ivec2 pixel) { return ((pixel.x | pixel.y) & 3) == 0; }
+// One pixel in 16 measures D against D_smooth (render/frame/method_output_check.h says why 4 x + 1): whole 4x4
+// blocks, one block in 4 along x and y, so that llvmpipe's 4x4 SIMD blocks take the branch together (a scattered
+// pattern made every block evaluate D_smooth: +3% of a deliot2023 frame's CPU time).
+bool methodOutputSampled(ivec2 pixel) { return ((pixel.x | pixel.y) & 12) == 0; }
 
 bool nonFinite(float x) { return isnan(x) || isinf(x); }
 
