@@ -413,7 +413,7 @@ TEST(HostileScene, MergedModelsKeepTheirOwnEmissiveAndCoatTextures) {
 }
 
 // 100k materials took 19.6 s and 100k cameras 15.7 s (a linear search per name): the time per entry must not grow
-// with the count. 25k and 100k entries, fastest of two: a linear loader gives a ratio near 4, the old one 16.
+// with the count. 10k and 40k entries, fastest of two: a linear loader gives a ratio near 4, the old one 16.
 TEST(HostileScene, NameLookupsStayLinear) {
     fs::path dir = freshDir("names");
     auto write = [&](const std::string& kind, int n) {
@@ -428,16 +428,16 @@ TEST(HostileScene, NameLookupsStayLinear) {
         return file;
     };
     for (const std::string kind : {"materials", "cameras"}) {
-        fs::path small = write(kind, 25000), large = write(kind, 100000);
+        fs::path small = write(kind, 10000), large = write(kind, 40000);
         double tSmall = 1e30, tLarge = 1e30;
         for (int run = 0; run < 2; ++run) {
             tSmall = std::min(tSmall, secondsOf([&] { glimmer::loadSceneFile(small); }));
             tLarge = std::min(tLarge, secondsOf([&] { glimmer::loadSceneFile(large); }));
         }
-        EXPECT_LT(tLarge / tSmall, 8.0) << kind << ": 25k in " << tSmall << " s, 100k in " << tLarge << " s";
-        EXPECT_LT(tLarge, 10.0 * kSlowdown) << kind;
+        EXPECT_LT(tLarge / tSmall, 8.0) << kind << ": 10k in " << tSmall << " s, 40k in " << tLarge << " s";
+        EXPECT_LT(tLarge, 4.0 * kSlowdown) << kind;
     }
-    // A reference to a missing name lists a few names, not 100k.
+    // A reference to a missing name lists a few names, not all of them.
     writeFile(dir / "missing.json", R"({"base": "plane25", "instances": [{"mesh": "nope", "material": "ground"}]})");
     std::string message = expectCleanError("missing", [&] { glimmer::loadSceneFile(dir / "missing.json"); }, "missing.json",
                                            {"instances[0].mesh", "no mesh named 'nope'"});

@@ -774,7 +774,7 @@ private:
                 }
             }
             if (node.camera >= 0) addCamera(element(model_.cameras, node.camera, "camera", file_), node, world);
-            if (std::optional<int> light = nodeLight(jsonElement(jsonMember(&json_, "nodes"), size_t(nodeIndex)), nodeIndex, file_)) {
+            if (std::optional<int> light = nodeLight(jsonElement(rawNodes_, size_t(nodeIndex)), nodeIndex, file_)) {
                 // Like a mesh: a zero-scale (or non-finite) node hides its light, with a warning naming the node.
                 if (usableLightTransform(world)) {
                     gltfLights_.push_back(punctualLight(json_, *light, world, file_));
@@ -901,6 +901,7 @@ private:
 
     const tinygltf::Model& model_;
     const GltfValue& json_;   // the same file's JSON, for what tinygltf reads lossily (scene/gltf_json.h)
+    const GltfValue* rawNodes_ = jsonMember(&json_, "nodes");   // its "nodes" (looked up once: DAGs visit 2^20)
     std::string file_;
     Warnings warnings_;
     Scene scene_;
