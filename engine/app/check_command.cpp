@@ -32,7 +32,8 @@ static const char* kCheckHelp =
     "  relative to smooth, reported) and constant-time (plane25 / plane90 cost like smooth's). Exit 1 names the\n"
     "  rules that failed. --size: convergence renders (default 128); --timing-size, --frames: timing (192, 5).\n"
     "  Each rule runs in a process of its own and fails when it takes longer than --rule-seconds (default 300):\n"
-    "  a method that loops until the driver's iteration cap cannot hold the check for hours.\n";
+    "  a method that loops until the driver's iteration cap cannot hold the check for hours (renders grow with\n"
+    "  the square of --size: raise the limit with it).\n";
 
 namespace {
 
