@@ -23,6 +23,9 @@ GLIMMER_SUITE_NEEDS(RenderCommand, Process);
 
 using glimmer::test::runGlimmer;
 
+// Logs and outputs the tests read back.
+constexpr glimmer::InputFileKind kTestText{"test output", uint64_t(64) << 20};
+
 namespace {
 
 struct BadCase {
@@ -96,7 +99,7 @@ TEST(BadInput, ShaderCompileErrorNamesFileAndLine) {
     std::filesystem::copy(glimmer::defaultShaderDir(), root, std::filesystem::copy_options::recursive);
     // Break line 12 of an included file: the error must point at that file and line, not at the expanded source.
     std::filesystem::path file = root / "common" / "brdf.glsl";
-    std::string text = glimmer::readTextFile(file);
+    std::string text = glimmer::readInputFile(file, glimmer::kShaderFileInput);
     std::vector<std::string> lines;
     size_t start = 0;
     for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) lines.push_back(text.substr(start, end - start));
@@ -229,8 +232,8 @@ TEST(BadInput, FailedWritesExitNonZeroAndLeaveNothingHalfWritten) {
     std::string command = "ulimit -f 2; trap '' XFSZ; exec '" + std::string(GLIMMER_EXECUTABLE) +
                           "' render --scene sphere --size 256x256 --out '" + out + "' >'" + dir + "/log' 2>&1";
     int status = std::system(("bash -c \"" + command + "\"").c_str());
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << glimmer::readTextFile(dir + "/log");
-    EXPECT_EQ(glimmer::readTextFile(out), "previous");
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << glimmer::readInputFile(dir + "/log", kTestText);
+    EXPECT_EQ(glimmer::readInputFile(out, kTestText), "previous");
     size_t files = 0;
     for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
     EXPECT_EQ(files, 3u) << "pipe, image and log only";

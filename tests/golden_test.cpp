@@ -46,7 +46,7 @@ std::filesystem::path brokenShaderCopy(const std::string& name, const std::strin
                                        const std::string& to) {
     std::filesystem::path root = std::filesystem::path(test::makeTempDir(name)) / "shaders";
     std::filesystem::copy(defaultShaderDir(), root, std::filesystem::copy_options::recursive);
-    std::string text = readTextFile(root / file);
+    std::string text = readInputFile(root / file, kShaderFileInput);
     size_t at = text.find(from);
     EXPECT_NE(at, std::string::npos) << from << " not found in " << file;
     if (at != std::string::npos) text.replace(at, from.size(), to);

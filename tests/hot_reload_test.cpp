@@ -115,7 +115,7 @@ TEST(HotReload, EditTakesEffectBrokenEditKeepsLastGoodProgramAndFixRecovers) {
 
     // 1. Lighting outputs a constant: wrap the original main and overwrite its result.
     fs::path lighting = copy.dir() / "frame/lighting.frag";
-    const std::string original = readTextFile(lighting);
+    const std::string original = readInputFile(lighting, kShaderFileInput);
     std::smatch output;
     ASSERT_TRUE(std::regex_search(original, output, std::regex(R"(layout\(location = 0\) out vec4 (\w+);)")));
     std::string constant = std::regex_replace(original, std::regex(R"(void\s+main\s*\(\s*\))"), "void originalMain()");
@@ -167,7 +167,7 @@ TEST(HotReload, IncludedFileRebuildsOnlyTheProgramsThatUseIt) {
     auto deps = f.renderer->shaderDependencies();
     ASSERT_NE(std::find(deps.begin(), deps.end(), brdf), deps.end()) << "shaderDependencies() must list includes";
     FileWatcher watcher(copy.dir());
-    writeFile(brdf, readTextFile(brdf) + "\n// touched by the test\n", false);
+    writeFile(brdf, readInputFile(brdf, kShaderFileInput) + "\n// touched by the test\n", false);
     std::vector<fs::path> changed;
     ASSERT_GE(waitForChange(watcher, brdf, changed), 0.0);
     std::vector<std::string> rebuilt = f.renderer->reloadChangedPrograms(changed);
@@ -189,11 +189,11 @@ TEST(FileWatcher, ModificationTimeFallbackSeesWritesAndRenames) {
     }
     fs::path file = copy.dir() / "image/tonemap.frag";
     std::vector<fs::path> changed;
-    writeFile(file, readTextFile(file) + "\n", false);
+    writeFile(file, readInputFile(file, kShaderFileInput) + "\n", false);
     double latency = waitForChange(watcher, file, changed);
     ASSERT_GE(latency, 0.0);
     EXPECT_LT(latency, 500.0);
-    writeFile(file, readTextFile(file) + "\n", true);
+    writeFile(file, readInputFile(file, kShaderFileInput) + "\n", true);
     EXPECT_GE(waitForChange(watcher, file, changed), 0.0);
 }
 
@@ -201,7 +201,7 @@ TEST(FileWatcher, DebounceMergesBurstsAndWatchesNewFolders) {
     TempShaderCopy copy("watch-debounce");
     FileWatcher watcher(copy.dir(), 80ms);
     fs::path file = copy.dir() / "common/fullscreen.vert";
-    std::string text = readTextFile(file);
+    std::string text = readInputFile(file, kShaderFileInput);
     auto written = std::chrono::steady_clock::now();
     writeFile(file, text + "\n", false);
     std::this_thread::sleep_for(20ms);

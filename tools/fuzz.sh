@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The loaders of untrusted files under libFuzzer + AddressSanitizer + UndefinedBehaviorSanitizer (fuzz/).
 #   bash tools/fuzz.sh [SECONDS] [TARGET ...]   build build-fuzz/, run the loader tests, then fuzz each target for
-#                                               SECONDS (default 60; targets: gltf scene_file environment), all
-#                                               targets at once (libFuzzer is single-threaded)
+#                                               SECONDS (default 60; targets: gltf scene_file environment
+#                                               method_file camera_path), all targets at once (libFuzzer is
+#                                               single-threaded): the wall time stays SECONDS whatever their number
 #   bash tools/fuzz.sh --tests                  build and run only the loader tests (tests/hostile_input_test.cpp,
 #                                               tests/output_files_test.cpp) under the sanitizers
 # Fails on a crash, sanitizer report, leak, timeout (> 30 s per input) or out-of-memory (> 2.5 GB) of any input;
@@ -19,11 +20,11 @@ for arg in "$@"; do
   case "$arg" in
     --tests) tests_only=1 ;;
     [0-9]*) seconds=$arg ;;
-    gltf|scene_file|environment) targets+=("$arg") ;;
-    *) echo "fuzz.sh: unknown argument '$arg' (use SECONDS, --tests, gltf, scene_file, environment)" >&2; exit 2 ;;
+    gltf|scene_file|environment|method_file|camera_path) targets+=("$arg") ;;
+    *) echo "fuzz.sh: unknown argument '$arg' (use SECONDS, --tests, gltf, scene_file, environment, method_file, camera_path)" >&2; exit 2 ;;
   esac
 done
-[ ${#targets[@]} -gt 0 ] || targets=(gltf scene_file environment)
+[ ${#targets[@]} -gt 0 ] || targets=(gltf scene_file environment method_file camera_path)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGLIMMER_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j "$(nproc)"

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -17,12 +16,15 @@ namespace glimmer {
 namespace fs = std::filesystem;
 
 std::string framePath(const std::string& pattern, int index) {
-    static const std::regex field("%0?[0-9]*d");
-    auto begin = std::sregex_iterator(pattern.begin(), pattern.end(), field);
-    size_t fields = size_t(std::distance(begin, std::sregex_iterator()));
-    size_t percents = size_t(std::count(pattern.begin(), pattern.end(), '%'));
-    if (fields != 1 || percents != 1)
-        throw UsageError("--out: '" + pattern + "' needs exactly one frame-number field such as %04d");
+    // Exactly one '%', starting a field %d or %0Nd with at most two width digits (read by hand: a regular
+    // expression recursing per digit overflowed the stack on long arguments).
+    auto bad = [&] { return UsageError("--out: '" + pattern.substr(0, 200) + "' needs exactly one frame-number field such as %04d"); };
+    size_t percent = pattern.find('%');
+    if (percent == std::string::npos || pattern.find('%', percent + 1) != std::string::npos) throw bad();
+    size_t at = percent + 1;
+    while (at < pattern.size() && at - percent <= 3 && pattern[at] >= '0' && pattern[at] <= '9') ++at;
+    if (at >= pattern.size() || pattern[at] != 'd') throw bad();
+    if (pattern.size() > 4000) throw UsageError("--out: the pattern is longer than 4000 characters");
     char text[4096];
     std::snprintf(text, sizeof text, pattern.c_str(), index);
     return text;
@@ -86,17 +88,43 @@ static void encodeVideo(const std::string& pattern, double fps, const std::strin
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("--video: ffmpeg failed writing " + video);
 }
 
+// The most frames one path render may produce (as --frames): 9 hours at 30 fps.
+constexpr double kMaxPathFrames = 1e6;
+
+// A private folder for frames that only feed the video: mkdtemp makes it with a name nobody can predict and mode
+// 0700, so another user cannot plant files or links in it.
+static fs::path makeFramesFolder() {
+    std::string name = (fs::temp_directory_path() / "glimmer-frames-XXXXXX").string();
+    if (!::mkdtemp(name.data())) throw Error("--video: cannot create a folder for the frames in " + fs::temp_directory_path().string());
+    return name;
+}
+
 int renderPathSequence(RenderRequest request, const PathRenderOptions& options) {
     ui::RecordedPath path = ui::RecordedPath::load(options.pathFile);
-    int frames = options.frames.value_or(int(std::floor(path.duration() * options.fps + 1e-9)) + 1);
-    // Frames for a video alone go to a temporary folder that is removed afterwards.
+    // The derived count in double first: a long path at a high rate must be refused, not converted to int
+    // (1e300 s gave "-2147483647 frames").
+    const double wholePath = std::floor(path.duration() * options.fps + 1e-9) + 1.0;
+    if (!options.frames && !(wholePath <= kMaxPathFrames)) {
+        char text[256];
+        std::snprintf(text, sizeof text, ": the path lasts %g s: %.0f frames at %g fps exceed the limit of %.0f (--frames N renders the first N)",
+                      path.duration(), wholePath, options.fps, kMaxPathFrames);
+        throw Error(options.pathFile + text);
+    }
+    const int frames = options.frames.value_or(int(wholePath));
+    // Frames for a video alone go to a temporary folder that is removed afterwards, whatever happens.
     fs::path temporary;
+    struct RemoveFolder {
+        const fs::path& folder;
+        ~RemoveFolder() {
+            std::error_code ec;
+            if (!folder.empty()) fs::remove_all(folder, ec);
+        }
+    } removeFolder{temporary};
     std::string pattern;
     if (options.outPattern) {
         pattern = *options.outPattern;
     } else {
-        temporary = fs::temp_directory_path() / ("glimmer-frames-" + std::to_string(::getpid()));
-        fs::create_directories(temporary);
+        temporary = makeFramesFolder();
         pattern = (temporary / "%05d.png").string();
     }
     request.frames = 1;
@@ -115,7 +143,6 @@ int renderPathSequence(RenderRequest request, const PathRenderOptions& options) 
         encodeVideo(pattern, options.fps, *options.video);
         std::printf("%s\n", options.video->c_str());
     }
-    if (!temporary.empty()) fs::remove_all(temporary);
     log::info("render: ", frames, " frames along ", options.pathFile, " (", path.duration(), " s at ", options.fps, " fps)");
     return 0;
 }

@@ -6,6 +6,7 @@
 #include "glints/methods.h"
 #include "offscreen/render_stats.h"
 #include "offscreen/supersample.h"
+#include "render/frame/frame_size_limit.h"
 #include "render/image/upscale.h"
 #include "scene/scene_loader.h"
 
@@ -18,6 +19,8 @@ OffscreenSession::OffscreenSession(const RenderRequest& request) {
     baseScene_.camera(request.camera);  // validate --camera before creating a context
     findGlintMethod(request.settings.method);
     context_ = createHeadlessContext(request.backend);
+    sizeLimit_ = frameSizeLimit();
+    checkFrameSize(request.width, request.height, sizeLimit_, "--size");   // before any target is allocated
     scene_ = baseScene_;
     applySceneOverrides(request.settings, scene_);
     gpuScene_ = std::make_unique<GpuScene>(scene_);
@@ -45,6 +48,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
     if (int(request.settings.value(param::aa)) == 2 && request.settings.debugView == 0)
         return image::supersampledRender(request, [this](const RenderRequest& r) { return render(r); });
     context_->makeCurrent();
+    checkFrameSize(request.width, request.height, sizeLimit_, "--size");
     scene_ = baseScene_;
     applySceneOverrides(request.settings, scene_);
     gpuScene_->updateMaterialsAndLights(scene_);
@@ -58,6 +62,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
               .outputHeight = request.height};
     // Monte Carlo IBL modes: each frame is the mean of `spp` estimates (sample 0 renders the G-buffer).
     RenderTimings timings;
+    renderer_->methodOutput().reset();
     for (int frame = 0; frame < std::max(request.frames, 1); ++frame) {
         FrameClock clock;
         renderer_->renderAccumulated(scene_, *gpuScene_, view, request.spp, true);
@@ -76,6 +81,17 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
         result.display =
             catmullRomUpscale(result.display, rendered.postWidth, rendered.postHeight, request.width, request.height);
     }
+    // What the method produced before the lighting pass's clamp (render/frame/method_output_check.h), over every
+    // frame and sample of this render: reported once per method and session, and in --stats.
+    const MethodOutputCounts output = renderer_->methodOutput().read();
+    if (output.anyProblem() && warnedMethods_.insert(request.settings.method).second) {
+        std::string lines = output.describe(request.settings.method);
+        for (size_t start = 0; start < lines.size();) {
+            size_t end = std::min(lines.find('\n', start), lines.size());
+            log::warn(lines.substr(start, end - start));
+            start = end + 1;
+        }
+    }
     result.stats = renderStats({.request = request,
                                 .context = *context_,
                                 .scene = scene_,
@@ -83,6 +99,7 @@ RenderResult OffscreenSession::render(const RenderRequest& request) {
                                 .renderer = *renderer_,
                                 .timings = timings,
                                 .hdr = result.hdr,
+                                .methodOutput = output,
                                 .sceneLoadMs = sceneLoadMs_,
                                 .programBuildMs = programBuildMs_});
     return result;

@@ -4,12 +4,14 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "platform/context.h"
+#include "render/frame/frame_size_limit.h"
 #include "render/renderer.h"
 #include "render/settings.h"
 
@@ -57,6 +59,8 @@ private:
     std::unique_ptr<Renderer> renderer_;
     void applyEnvironment(const RenderRequest& request);
     double sceneLoadMs_ = 0.0, programBuildMs_ = 0.0;
+    std::set<std::string> warnedMethods_;   // methods whose output problems were reported (once per session)
+    FrameSizeLimit sizeLimit_;              // of this context (render/frame/frame_size_limit.h)
 };
 
 RenderResult renderOffscreen(const RenderRequest& request);

@@ -41,8 +41,10 @@ nlohmann::json renderStats(const RenderStatsInputs& in) {
     std::string aovName = "final";
     for (const AovInfo& aov : aovTable())
         if (aov.viewId == settings.debugView) aovName = aov.name;
-    size_t nonFinite = 0;
+    // The method's non-finite radiance before the lighting pass zeroed it, and any that reached the image.
+    size_t nonFinite = size_t(in.methodOutput.nonFiniteRadiance);
     for (float v : in.hdr) nonFinite += !std::isfinite(v);
+    const MethodOutputCounts& output = in.methodOutput;
     const bool autoExposure = settings.value(param::exposure_auto) > 0.5f;
     const bool upscaled = view.postWidth != request.width || view.postHeight != request.height;
     const GpuScene::DrawStats& draws = in.gpuScene.lastDrawStats();
@@ -83,6 +85,12 @@ nlohmann::json renderStats(const RenderStatsInputs& in) {
         {"counts", {{"meshes", in.scene.meshes.size()}, {"instances", in.scene.instances.size()},
                     {"triangles", in.scene.triangleCount()}, {"materials", in.scene.materials.size()},
                     {"lights", in.scene.lights.size()}, {"non_finite_values", nonFinite}}},
+        {"method_output", {{"non_finite_d", output.nonFiniteD}, {"negative_d", output.negativeD},
+                           {"non_finite_radiance", output.nonFiniteRadiance},
+                           {"negative_radiance", output.negativeRadiance},
+                           {"sampled_evaluations", output.sampledEvaluations},
+                           {"far_above_smooth_fraction", output.farAboveSmoothFraction()},
+                           {"implausible", output.implausible()}}},
         // The last G-buffer pass after frustum culling of the meshes' chunks (back-face culling not counted).
         {"gbuffer_draw", {{"chunks", draws.chunksTotal},
                           {"chunks_drawn", draws.chunksDrawn},

@@ -45,6 +45,7 @@ struct RenderStatsInputs {
     const Renderer& renderer;
     const RenderTimings& timings;
     const std::vector<float>& hdr;   // the result's radiance (non-finite values are counted)
+    const MethodOutputCounts& methodOutput;   // what the method produced before the lighting pass's clamp
     double sceneLoadMs = 0.0, programBuildMs = 0.0;
 };
 nlohmann::json renderStats(const RenderStatsInputs& in);

@@ -58,7 +58,17 @@ gl::Texture uploadTexture(const TextureData& data) {
 GpuScene::GpuScene(const Scene& scene) {
     static std::atomic<uint64_t> nextSerial{1};
     serial_ = nextSerial++;
-    for (const MeshData& mesh : scene.meshes) {
+    // A mesh no instance draws (a scene file's generated mesh left unused) is neither chunked nor uploaded: every
+    // draw goes through the instances.
+    std::vector<bool> used(scene.meshes.size(), false);
+    for (const Instance& instance : scene.instances)
+        if (instance.mesh < used.size()) used[instance.mesh] = true;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const MeshData& mesh = scene.meshes[m];
+        if (!used[m]) {
+            meshes_.emplace_back();
+            continue;
+        }
         std::vector<Vertex> vertices(mesh.positions.size());
         for (size_t i = 0; i < vertices.size(); ++i) {
             vertices[i].position = mesh.positions[i];
@@ -106,7 +116,7 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     std::vector<GpuMaterial> materials;
     for (const Material& m : scene.materials)
         materials.push_back({m.baseColor, {m.alpha, m.metallic, float(int(m.ndf)), m.glinty ? 1.0f : 0.0f},
-                             {m.glintDensityScale, m.alphaCutoff, m.clearcoat, m.clearcoatRoughness}});
+                             {m.shadingDensityScale(), m.alphaCutoff, m.clearcoat, m.clearcoatRoughness}});
     if (materials.empty()) materials.push_back({});
     materials_ = gl::createBuffer(GLsizeiptr(materials.size() * sizeof(GpuMaterial)), materials.data(), 0);
     std::vector<GpuLight> lights;

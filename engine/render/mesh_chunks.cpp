@@ -8,12 +8,45 @@
 namespace glimmer {
 namespace {
 
+// A chunk's triangles over a local vertex array: meshoptimizer sizes its tables by the vertex count it is given,
+// so every call on a chunk must see the chunk's vertices, not the mesh's (handing it the mesh's count made
+// chunking quadratic: a 2048-cell plane ran past 120 s). Local indices keep the mesh's vertex order (a sorted,
+// monotonic renumbering), so the optimisers' tie-breaking and results are those of the mesh-wide call.
+struct LocalVertices {
+    std::vector<uint32_t> indices;        // the chunk's triangles, local vertex numbers
+    std::vector<uint32_t> toMesh;         // local vertex -> mesh vertex
+    std::vector<glm::vec3> positions;     // of the local vertices
+};
+
+// `slot` is a scratch array over the mesh's vertices, all ~0u on entry and on return (so a chunk costs its own
+// size, not the mesh's).
+LocalVertices localVertices(const uint32_t* indices, size_t indexCount, const std::vector<glm::vec3>& positions,
+                            std::vector<uint32_t>& slot) {
+    LocalVertices local;
+    for (size_t i = 0; i < indexCount; ++i)   // each vertex once (marked in `slot`), then in mesh order
+        if (slot[indices[i]] == ~0u) {
+            slot[indices[i]] = 0u;
+            local.toMesh.push_back(indices[i]);
+        }
+    std::sort(local.toMesh.begin(), local.toMesh.end());
+    local.positions.reserve(local.toMesh.size());
+    for (size_t i = 0; i < local.toMesh.size(); ++i) {
+        slot[local.toMesh[i]] = uint32_t(i);
+        local.positions.push_back(positions[local.toMesh[i]]);
+    }
+    local.indices.resize(indexCount);
+    for (size_t i = 0; i < indexCount; ++i) local.indices[i] = slot[indices[i]];
+    for (uint32_t v : local.toMesh) slot[v] = ~0u;
+    return local;
+}
+
 struct ChunkBuilder {
     const std::vector<uint32_t>& indices;
     const std::vector<glm::vec3>& positions;
     const std::vector<glm::vec3>& centroids;
     size_t maxTriangles;
     ChunkedIndices& out;
+    std::vector<uint32_t> slot = std::vector<uint32_t>(positions.size(), ~0u);   // localVertices' scratch
 
     // Splits triangles [begin, end) of `order` at the median centroid along the longest axis of their centroids'
     // bounds until a range fits in one chunk.
@@ -47,10 +80,12 @@ struct ChunkBuilder {
             for (int k = 0; k < 3; ++k) chunk.push_back(indices[size_t(t) * 3 + size_t(k)]);
         // Vertex cache first, then overdraw (meshoptimizer's overdraw pass expects vertex-cache-optimised input and
         // keeps its locality within the 1.05 threshold). Both only permute triangles and keep each one's winding.
+        LocalVertices local = localVertices(chunk.data(), chunk.size(), positions, slot);
         std::vector<uint32_t> cached(chunk.size()), ordered(chunk.size());
-        meshopt_optimizeVertexCache(cached.data(), chunk.data(), chunk.size(), positions.size());
-        meshopt_optimizeOverdraw(ordered.data(), cached.data(), cached.size(), &positions[0].x, positions.size(),
-                                 sizeof(glm::vec3), 1.05f);
+        meshopt_optimizeVertexCache(cached.data(), local.indices.data(), local.indices.size(), local.positions.size());
+        meshopt_optimizeOverdraw(ordered.data(), cached.data(), cached.size(), &local.positions[0].x,
+                                 local.positions.size(), sizeof(glm::vec3), 1.05f);
+        for (uint32_t& index : ordered) index = local.toMesh[index];
         MeshChunk c;
         c.firstIndex = uint32_t(out.indices.size());
         c.indexCount = uint32_t(ordered.size());
@@ -84,39 +119,25 @@ ChunkedIndices buildMeshChunks(const std::vector<uint32_t>& indices, const std::
 
 namespace {
 
-// One simplified level of a chunk's triangles, in the mesh's vertex indices. The chunk's vertices are first
-// compacted to a local array, so each call costs the chunk's size rather than the mesh's (meshoptimizer sizes
-// its tables by the vertex count it is given).
+// One simplified level of a chunk's triangles, in the mesh's vertex indices (over the chunk's own vertices, so
+// each call costs the chunk's size rather than the mesh's).
 std::vector<uint32_t> simplifyChunk(const uint32_t* indices, size_t indexCount, const std::vector<glm::vec3>& positions,
-                                    size_t targetIndices, float& meshSpaceError) {
-    std::vector<uint32_t> local(indexCount), toMesh;
-    std::vector<glm::vec3> localPositions;
-    std::vector<std::pair<uint32_t, uint32_t>> seen;   // (mesh vertex, local vertex), sorted for lookup
-    seen.reserve(indexCount);
-    for (size_t i = 0; i < indexCount; ++i) seen.push_back({indices[i], 0});
-    std::sort(seen.begin(), seen.end());
-    seen.erase(std::unique(seen.begin(), seen.end(), [](auto& a, auto& b) { return a.first == b.first; }), seen.end());
-    for (size_t v = 0; v < seen.size(); ++v) {
-        seen[v].second = uint32_t(v);
-        toMesh.push_back(seen[v].first);
-        localPositions.push_back(positions[seen[v].first]);
-    }
-    for (size_t i = 0; i < indexCount; ++i)
-        local[i] = std::lower_bound(seen.begin(), seen.end(), std::pair{indices[i], 0u})->second;
+                                    size_t targetIndices, float& meshSpaceError, std::vector<uint32_t>& slot) {
+    LocalVertices local = localVertices(indices, indexCount, positions, slot);
     std::vector<uint32_t> simplified(indexCount);
     float relativeError = 0.0f;
     // Locked border: the chunk's open edges (its seams with neighbouring chunks and the mesh's own borders) keep
     // their vertices, so any two levels of neighbouring chunks share them exactly. Error unbounded here: the
     // target count sets the level, the draw chooses by the error reached.
-    const float localScale = meshopt_simplifyScale(&localPositions[0].x, localPositions.size(), sizeof(glm::vec3));
-    size_t count = meshopt_simplify(simplified.data(), local.data(), indexCount, &localPositions[0].x,
-                                    localPositions.size(), sizeof(glm::vec3), targetIndices, 1.0f,
+    const float localScale = meshopt_simplifyScale(&local.positions[0].x, local.positions.size(), sizeof(glm::vec3));
+    size_t count = meshopt_simplify(simplified.data(), local.indices.data(), indexCount, &local.positions[0].x,
+                                    local.positions.size(), sizeof(glm::vec3), targetIndices, 1.0f,
                                     meshopt_SimplifyLockBorder, &relativeError);
     simplified.resize(count);
     meshSpaceError = relativeError * localScale;
     std::vector<uint32_t> cached(count);
-    if (count > 0) meshopt_optimizeVertexCache(cached.data(), simplified.data(), count, localPositions.size());
-    for (uint32_t& index : cached) index = toMesh[index];
+    if (count > 0) meshopt_optimizeVertexCache(cached.data(), simplified.data(), count, local.positions.size());
+    for (uint32_t& index : cached) index = local.toMesh[index];
     return cached;
 }
 
@@ -125,6 +146,7 @@ std::vector<uint32_t> simplifyChunk(const uint32_t* indices, size_t indexCount, 
 void addChunkLods(ChunkedIndices& chunked, const std::vector<glm::vec3>& positions) {
     if (chunked.chunks.empty()) return;
     std::vector<bool> open(chunked.chunks.size(), true);   // a chunk that stopped simplifying gets no further level
+    std::vector<uint32_t> slot(positions.size(), ~0u);
     for (int level = 1; level <= kMaxCoarserLods; ++level) {
         for (size_t c = 0; c < chunked.chunks.size(); ++c) {
             MeshChunk& chunk = chunked.chunks[c];
@@ -133,7 +155,7 @@ void addChunkLods(ChunkedIndices& chunked, const std::vector<glm::vec3>& positio
             const size_t target = std::max<size_t>(3, (size_t(chunk.indexCount / 3) >> (2 * level)) * 3);
             float error = 0.0f;
             std::vector<uint32_t> lod = simplifyChunk(chunked.indices.data() + chunk.firstIndex, chunk.indexCount,
-                                                      positions, target, error);
+                                                      positions, target, error, slot);
             const float previousError = level == 1 ? 0.0f : chunk.coarser[size_t(level - 2)].error;
             if (lod.size() < 3 || lod.size() * 5 > size_t(previousCount) * 4 || !(error >= previousError)) {
                 open[c] = false;

@@ -44,6 +44,7 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
     capture_ = std::make_unique<RendererCapture>(shaderRoot_, environment_);
     ambientOcclusion_ = std::make_shared<AmbientOcclusion>();
     shadowMaps_ = std::make_shared<ShadowMaps>();
+    methodOutput_.bind();   // also for probe captures before the first frame
     buildFrameList();
 }
 
@@ -232,6 +233,7 @@ void Renderer::uploadFrameUniforms(const Scene& scene, const GpuScene& gpuScene,
     uniforms.sample = {accumulating() ? view.sampleIndex : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(uniforms), &uniforms);
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameUniforms_.id());
+    methodOutput_.bind();
 }
 
 FrameContext Renderer::frameContext(const Scene& scene, const GpuScene& gpuScene, const View& view, bool blendSample,

@@ -13,6 +13,7 @@
 #include "environment/environment.h"
 #include "gl/handles.h"
 #include "render/frame/frame_resources.h"
+#include "render/frame/method_output_check.h"
 #include "render/frame/pass.h"
 #include "render/frame/pass_timer.h"
 #include "render/gpu_scene.h"
@@ -105,6 +106,8 @@ public:
     const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
     // The shadow maps of the last frame: views in use and what the shadow passes rendered (--stats, tests).
     const ShadowMaps& shadowMaps() const { return *shadowMaps_; }
+    // What the glint method produced since the last reset (render/frame/method_output_check.h): read() waits for the GPU.
+    MethodOutputCheck& methodOutput() { return methodOutput_; }
 
     // The frame's resources as the last view left them (tests read G-buffer targets, the glint part...).
     const FrameResources& resources() const { return resources_; }
@@ -160,6 +163,7 @@ private:
     bool resized_ = false;   // every pass of the list has been resized to lastView_'s render size
     View lastView_;
     gl::Buffer frameUniforms_;
+    MethodOutputCheck methodOutput_;   // bound with the frame uniforms, read by the lighting pass
     gl::VertexArray emptyVao_;
     PassTimer timer_;
     std::vector<PassTiming> editPasses_;

@@ -11,16 +11,19 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "scene/gltf_glint_material.h"
+#include "scene/gltf_json.h"
 #include "scene/scene_limits.h"
 #include "scene/uv_transform.h"
 
@@ -268,16 +271,22 @@ bool toRgba8(const tinygltf::Image& image, std::vector<uint8_t>& rgba) {
     return true;
 }
 
-// KHR_texture_transform's offset, rotation and scale as a matrix (uv_transform.h).
-glm::mat3 textureTransform(const tinygltf::Value& ext) {
-    auto number = [](const tinygltf::Value& v, double fallback) { return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : fallback; };
+// KHR_texture_transform's offset, rotation and scale as a matrix (uv_transform.h), from the file's JSON: a null, a
+// wrong type or a wrong length is an error naming the key (tinygltf's values wrapped wide integers).
+glm::mat3 textureTransform(const GltfValue& ext, const GltfValueReader& r, int& texCoord) {
+    constexpr double kLimit = 1e9;
     glm::vec2 offset(0.0f), scale(1.0f);
     float rotation = 0.0f;
-    if (ext.Has("offset") && ext.Get("offset").ArrayLen() == 2)
-        offset = {float(number(ext.Get("offset").Get(0), 0)), float(number(ext.Get("offset").Get(1), 0))};
-    if (ext.Has("scale") && ext.Get("scale").ArrayLen() == 2)
-        scale = {float(number(ext.Get("scale").Get(0), 1)), float(number(ext.Get("scale").Get(1), 1))};
-    if (ext.Has("rotation")) rotation = float(number(ext.Get("rotation"), 0));
+    if (const GltfValue* v = jsonMember(&ext, "offset")) {
+        std::vector<double> o = r.numbers(*v, "offset", 2, -kLimit, kLimit);
+        offset = {float(o[0]), float(o[1])};
+    }
+    if (const GltfValue* v = jsonMember(&ext, "scale")) {
+        std::vector<double> k = r.numbers(*v, "scale", 2, -kLimit, kLimit);
+        scale = {float(k[0]), float(k[1])};
+    }
+    if (const GltfValue* v = jsonMember(&ext, "rotation")) rotation = float(r.number(*v, "rotation", -kLimit, kLimit));
+    if (const GltfValue* v = jsonMember(&ext, "texCoord")) texCoord = int(r.integer(*v, "texCoord", 0, 1 << 16));
     return uvTransformMatrix(offset, rotation, scale);
 }
 
@@ -321,7 +330,8 @@ bool sameTransform(const glm::mat3& a, const glm::mat3& b) {
 // per-texture factors the engine has no slot for (normal scale, occlusion strength) are baked into copies.
 class SceneBuilder {
 public:
-    SceneBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file), warnings_(file) {}
+    SceneBuilder(const tinygltf::Model& model, const GltfValue& json, const std::string& file)
+        : model_(model), json_(json), file_(file), warnings_(file) {}
 
     Scene build(const std::string& name) {
         // glTF 1.0 files parse into nonsense under the 2.0 schema: refuse them by name (glTF 3.3 asset.version).
@@ -447,34 +457,42 @@ private:
         m.alpha = std::max(roughness * roughness, 1e-3f);  // the G-buffer multiplies by the texture's roughness^2
         m.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
         m.doubleSided = gm.doubleSided;   // glTF 2.0 Sec. 3.9.5: single-sided (back faces culled) unless set
-        if (gm.alphaMode == "MASK") m.alphaCutoff = float(gm.alphaCutoff);
+        const GltfValue* raw = jsonElement(jsonMember(&json_, "materials"), size_t(index));
+        const GltfValueReader reader(file_ + ": materials[" + std::to_string(index) + "].");
+        if (const GltfValue* cutoff = jsonMember(raw, "alphaCutoff")) {
+            // glTF 3.9.4: alphaCutoff >= 0 (default 0.5); above 1 a MASK material would vanish whatever its alpha.
+            double value = reader.number(*cutoff, "alphaCutoff", 0.0, gm.alphaMode == "MASK" ? 1.0 : 1e30);
+            if (gm.alphaMode == "MASK") m.alphaCutoff = float(value);
+        } else if (gm.alphaMode == "MASK") {
+            m.alphaCutoff = 0.5f;
+        }
         m.blend = gm.alphaMode == "BLEND";   // composited after lighting by the transparent pass
-        m.emissive = emission(gm, index);
-        ClearcoatTextures coat = clearcoat(gm, index, m);
+        m.emissive = emission(gm, raw, reader);
+        ClearcoatTextures coat = clearcoat(raw, reader, m);
 
         // One UV transform per material (the engine applies Material::uvTransform to every texture lookup).
         // The base colour's transform wins; a texture with a different transform or another UV set is dropped.
-        struct Slot { const char* role; int gltfTexture; int texCoord; const tinygltf::ExtensionMap* extensions; int* target;
+        struct Slot { const char* role; int gltfTexture; int texCoord; const GltfValue* info; std::string key; int* target;
                       bool srgb; float normalScale; float occlusionStrength; };
+        const GltfValue* rawPbr = jsonMember(raw, "pbrMetallicRoughness");
+        const std::string coatKey = "extensions.KHR_materials_clearcoat.";
         std::vector<Slot> slots = {
-            {"baseColor", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions, &m.baseColorTexture, true, 1, 1},
-            {"normal", gm.normalTexture.index, gm.normalTexture.texCoord, &gm.normalTexture.extensions, &m.normalTexture, false, float(gm.normalTexture.scale), 1},
-            {"metallicRoughness", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions, &m.metallicRoughnessTexture, false, 1, 1},
-            {"occlusion", gm.occlusionTexture.index, gm.occlusionTexture.texCoord, &gm.occlusionTexture.extensions, &m.occlusionTexture, false, 1, float(gm.occlusionTexture.strength)},
-            {"emissive", gm.emissiveTexture.index, gm.emissiveTexture.texCoord, &gm.emissiveTexture.extensions, &m.emissiveTexture, true, 1, 1},
-            {"clearcoat", coat.factor.index, coat.factor.texCoord, &coat.factor.extensions, &m.clearcoatTexture, false, 1, 1},
-            {"clearcoatRoughness", coat.roughness.index, coat.roughness.texCoord, &coat.roughness.extensions, &m.clearcoatRoughnessTexture, false, 1, 1},
-            {"clearcoatNormal", coat.normal.index, coat.normal.texCoord, &coat.normal.extensions, &m.clearcoatNormalTexture, false, coat.normal.scale, 1},
+            {"baseColor", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, jsonMember(rawPbr, "baseColorTexture"), "pbrMetallicRoughness.baseColorTexture", &m.baseColorTexture, true, 1, 1},
+            {"normal", gm.normalTexture.index, gm.normalTexture.texCoord, jsonMember(raw, "normalTexture"), "normalTexture", &m.normalTexture, false, float(gm.normalTexture.scale), 1},
+            {"metallicRoughness", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, jsonMember(rawPbr, "metallicRoughnessTexture"), "pbrMetallicRoughness.metallicRoughnessTexture", &m.metallicRoughnessTexture, false, 1, 1},
+            {"occlusion", gm.occlusionTexture.index, gm.occlusionTexture.texCoord, jsonMember(raw, "occlusionTexture"), "occlusionTexture", &m.occlusionTexture, false, 1, float(gm.occlusionTexture.strength)},
+            {"emissive", gm.emissiveTexture.index, gm.emissiveTexture.texCoord, jsonMember(raw, "emissiveTexture"), "emissiveTexture", &m.emissiveTexture, true, 1, 1},
+            {"clearcoat", coat.factor.index, coat.factor.texCoord, coat.factor.info, coatKey + "clearcoatTexture", &m.clearcoatTexture, false, 1, 1},
+            {"clearcoatRoughness", coat.roughness.index, coat.roughness.texCoord, coat.roughness.info, coatKey + "clearcoatRoughnessTexture", &m.clearcoatRoughnessTexture, false, 1, 1},
+            {"clearcoatNormal", coat.normal.index, coat.normal.texCoord, coat.normal.info, coatKey + "clearcoatNormalTexture", &m.clearcoatNormalTexture, false, coat.normal.scale, 1},
         };
         bool haveTransform = false;
         for (const Slot& slot : slots) {
             if (slot.gltfTexture < 0) continue;
             glm::mat3 transform(1.0f);
             int texCoord = slot.texCoord;
-            if (auto it = slot.extensions->find("KHR_texture_transform"); it != slot.extensions->end()) {
-                transform = textureTransform(it->second);
-                if (it->second.Has("texCoord") && it->second.Get("texCoord").IsInt()) texCoord = it->second.Get("texCoord").GetNumberAsInt();
-            }
+            if (const GltfValue* ext = jsonMember(jsonMember(slot.info, "extensions"), "KHR_texture_transform"))
+                transform = textureTransform(*ext, GltfValueReader(reader.prefix() + slot.key + ".extensions.KHR_texture_transform."), texCoord);
             std::string what = "material '" + m.name + "': " + slot.role + " texture";
             if (texCoord != 0) {
                 warnings_.add(what + " uses TEXCOORD_" + std::to_string(texCoord) + " (only TEXCOORD_0 is supported); ignored");
@@ -497,7 +515,7 @@ private:
             warnings_.add("emission is off on materials whose emissive texture cannot be used");
         }
         // GLIMMER_materials_glint or its extras form (gltf_glint_material.h); its density texture is linear.
-        readGlintMaterial(gm, m, file_,
+        readGlintMaterial(raw, m, file_,
                           [&](int t) { return t >= 0 && size_t(t) < model_.textures.size() ? sceneTexture(t, false) : -2; },
                           [&](const std::string& w) { warnings_.add(w); });
         return m;
@@ -508,48 +526,39 @@ private:
         int index = -1;
         int texCoord = 0;
         float scale = 1.0f;
-        tinygltf::ExtensionMap extensions;
+        const GltfValue* info = nullptr;   // its JSON object (for KHR_texture_transform)
     };
     struct ClearcoatTextures { ExtensionTexture factor, roughness, normal; };
 
     // KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor (numbers in [0, 1], default 0) into
-    // the material; its three textures are returned for the material's texture slots. A factor outside [0, 1]
-    // or a texture that is not a textureInfo object is an error naming the field.
-    ClearcoatTextures clearcoat(const tinygltf::Material& gm, int index, Material& m) {
+    // the material; its three textures are returned for the material's texture slots. A factor outside [0, 1],
+    // a null, a wrong type or a texture that is not a textureInfo object is an error naming the key.
+    ClearcoatTextures clearcoat(const GltfValue* material, const GltfValueReader& reader, Material& m) {
         ClearcoatTextures coat;
-        auto it = gm.extensions.find("KHR_materials_clearcoat");
-        if (it == gm.extensions.end()) return coat;
-        const std::string where = file_ + ": materials[" + std::to_string(index) + "].extensions.KHR_materials_clearcoat.";
-        const tinygltf::Value& ext = it->second;
-        if (!ext.IsObject()) throw Error(where.substr(0, where.size() - 1) + " is not an object");
+        const GltfValue* ext = jsonMember(jsonMember(material, "extensions"), "KHR_materials_clearcoat");
+        if (!ext) return coat;
+        const GltfValueReader r(reader.prefix() + "extensions.KHR_materials_clearcoat.");
+        if (!ext->is_object()) reader.fail("extensions.KHR_materials_clearcoat", "expected an object, not " + jsonValueText(*ext));
         auto factor = [&](const char* key) {
-            if (!ext.Has(key)) return 0.0f;
-            const tinygltf::Value& v = ext.Get(key);
-            double value = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
-            if (!(value >= 0.0 && value <= 1.0)) throw Error(where + key + " is not a number in [0, 1]");
-            return float(value);
+            const GltfValue* v = jsonMember(ext, key);
+            if (!v) return 0.0f;
+            if (!v->is_number() || !(v->get<double>() >= 0.0 && v->get<double>() <= 1.0))
+                throw Error(r.prefix() + key + " is not a number in [0, 1] (" + jsonValueText(*v) + ")");
+            return float(v->get<double>());
         };
         m.clearcoat = factor("clearcoatFactor");
         m.clearcoatRoughness = factor("clearcoatRoughnessFactor");
         auto texture = [&](const char* key, ExtensionTexture& out) {
-            if (!ext.Has(key)) return;
-            const tinygltf::Value& v = ext.Get(key);
-            const std::string at = where + key;
-            if (!v.IsObject() || !v.Has("index") || !v.Get("index").IsInt())
-                throw Error(at + " is not a textureInfo object with an integer index");
-            out.index = v.Get("index").GetNumberAsInt();
-            if (out.index < 0 || size_t(out.index) >= model_.textures.size())
-                throw Error(at + ".index " + std::to_string(out.index) + " names no texture");
-            if (v.Has("texCoord") && v.Get("texCoord").IsInt()) out.texCoord = v.Get("texCoord").GetNumberAsInt();
-            if (v.Has("scale")) {
-                const tinygltf::Value& sv = v.Get("scale");
-                if (!sv.IsNumber() && !sv.IsInt()) throw Error(at + ".scale is not a number");
-                out.scale = float(sv.GetNumberAsDouble());
-            }
-            if (v.Has("extensions") && v.Get("extensions").IsObject()) {
-                const tinygltf::Value& e = v.Get("extensions");
-                for (const std::string& name : e.Keys()) out.extensions[name] = e.Get(name);
-            }
+            const GltfValue* v = jsonMember(ext, key);
+            if (!v) return;
+            if (!v->is_object() || !jsonMember(v, "index"))
+                r.fail(key, "expected a textureInfo object with an integer index, not " + jsonValueText(*v));
+            out.info = v;
+            out.index = int(r.integer(*jsonMember(v, "index"), std::string(key) + ".index", 0, std::numeric_limits<int>::max()));
+            if (out.index >= int(model_.textures.size()))
+                throw Error(r.prefix() + key + ".index " + std::to_string(out.index) + " names no texture");
+            if (const GltfValue* t = jsonMember(v, "texCoord")) out.texCoord = int(r.integer(*t, std::string(key) + ".texCoord", 0, 1 << 16));
+            if (const GltfValue* sv = jsonMember(v, "scale")) out.scale = float(r.number(*sv, std::string(key) + ".scale", -1e6, 1e6));
         };
         texture("clearcoatTexture", coat.factor);
         texture("clearcoatRoughnessTexture", coat.roughness);
@@ -559,24 +568,20 @@ private:
 
     // Emitted radiance: emissiveFactor (glTF 3.9.2, linear, each in [0, 1]) times KHR_materials_emissive_strength's
     // emissiveStrength (>= 0, default 1). A factor or strength outside its range is an error naming the field.
-    glm::vec3 emission(const tinygltf::Material& gm, int index) {
-        const std::string where = file_ + ": materials[" + std::to_string(index) + "].";
+    glm::vec3 emission(const tinygltf::Material& gm, const GltfValue* material, const GltfValueReader& reader) {
         glm::vec3 factor(0.0f);
         if (gm.emissiveFactor.size() == 3)
             for (int c = 0; c < 3; ++c) {
                 double v = gm.emissiveFactor[size_t(c)];
                 if (!(v >= -1e-3 && v <= 1.001))
-                    throw Error(where + "emissiveFactor[" + std::to_string(c) + "] = " + std::to_string(v) + " is outside [0, 1]");
+                    reader.fail("emissiveFactor[" + std::to_string(c) + "]", std::to_string(v) + " is outside [0, 1]");
                 factor[c] = std::clamp(float(v), 0.0f, 1.0f);
             }
         float strength = 1.0f;
-        if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end() &&
-                                                                           it->second.Has("emissiveStrength")) {
-            const tinygltf::Value& v = it->second.Get("emissiveStrength");
-            double value = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
-            if (!(value >= 0.0 && value <= 1e6))
-                throw Error(where + "extensions.KHR_materials_emissive_strength.emissiveStrength is not a number in [0, 1e6]");
-            strength = float(value);
+        if (const GltfValue* ext = jsonMember(jsonMember(material, "extensions"), "KHR_materials_emissive_strength")) {
+            if (!ext->is_object()) reader.fail("extensions.KHR_materials_emissive_strength", "expected an object, not " + jsonValueText(*ext));
+            if (const GltfValue* v = jsonMember(ext, "emissiveStrength"))
+                strength = float(reader.number(*v, "extensions.KHR_materials_emissive_strength.emissiveStrength", 0.0, 1e6));
         }
         return factor * strength;
     }
@@ -769,7 +774,15 @@ private:
                 }
             }
             if (node.camera >= 0) addCamera(element(model_.cameras, node.camera, "camera", file_), node, world);
-            if (int light = nodeLight(node, file_); light >= 0) gltfLights_.push_back(punctualLight(model_, light, world, file_));
+            if (std::optional<int> light = nodeLight(jsonElement(rawNodes_, size_t(nodeIndex)), nodeIndex, file_)) {
+                // Like a mesh: a zero-scale (or non-finite) node hides its light, with a warning naming the node.
+                if (usableLightTransform(world)) {
+                    gltfLights_.push_back(punctualLight(json_, *light, world, file_));
+                } else {
+                    punctualLight(json_, *light, glm::mat4(1.0f), file_);   // its own keys are still checked
+                    warnings_.add("node " + std::to_string(nodeIndex) + " has a singular or non-finite transform (zero scale); its light is skipped");
+                }
+            }
             for (int child : node.children) visit(child, world, depth + 1);
             onPath[size_t(nodeIndex)] = false;
         };
@@ -820,8 +833,12 @@ private:
         std::string where = file_ + ": cameras[" + std::to_string(node.camera) + "].perspective.";
         if (!(gc.perspective.yfov > 0.0 && gc.perspective.yfov < 3.0))
             throw Error(where + "yfov " + std::to_string(gc.perspective.yfov) + " is outside (0, 3) radians");
-        if (!(gc.perspective.znear > 0.0 && gc.perspective.znear < 1e6))
-            throw Error(where + "znear " + std::to_string(gc.perspective.znear) + " is outside (0, 1e6)");
+        // znear within a scene file camera's range [1e-5, 1e3] m (scene_file.cpp readCamera); zfar, when given,
+        // beyond it. A near plane past the whole model is refused once the bounds are known (addFramingCamera...).
+        if (!(gc.perspective.znear >= kMinCameraNear && gc.perspective.znear <= kMaxCameraNear))
+            throw Error(where + "znear " + std::to_string(gc.perspective.znear) + " is outside [1e-05, 1000]");
+        if (gc.perspective.zfar != 0.0 && !(gc.perspective.zfar > gc.perspective.znear))
+            throw Error(where + "zfar " + std::to_string(gc.perspective.zfar) + " is not beyond znear");
         glm::vec3 forwardAxis = glm::vec3(world * glm::vec4(0, 0, -1, 0)), upAxis = glm::vec3(world * glm::vec4(0, 1, 0, 0));
         bool finite = std::isfinite(glm::dot(forwardAxis, forwardAxis)) && std::isfinite(glm::dot(upAxis, upAxis)) &&
                       glm::all(glm::lessThanEqual(glm::abs(glm::vec3(world[3])), glm::vec3(kMaxCoordinate)));
@@ -831,6 +848,7 @@ private:
         camera.verticalFovDegrees = float(glm::degrees(gc.perspective.yfov));
         camera.nearPlane = float(gc.perspective.znear);
         gltfCameras_.push_back(camera);
+        gltfCameraKeys_.push_back(where + "znear");
     }
 
     // A camera framing the scene's bounds (first, the default) and a key light, so any model renders without a
@@ -852,7 +870,17 @@ private:
         camera.nearPlane = radius * 0.01f;
         scene_.cameras.push_back(camera);
         std::set<std::string> names = {"default"};
-        for (Camera c : gltfCameras_) {
+        for (size_t i = 0; i < gltfCameras_.size(); ++i) {
+            Camera c = gltfCameras_[i];
+            // Everything nearer than the near plane is clipped: a plane beyond the farthest corner of the model's
+            // bounds would show the sky alone.
+            float farthest = 0.0f;
+            for (int corner = 0; corner < 8; ++corner)
+                farthest = std::max(farthest, glm::distance(c.position, glm::vec3(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y,
+                                                                                  corner & 4 ? hi.z : lo.z)));
+            if (!(c.nearPlane < farthest))
+                throw Error(gltfCameraKeys_[i] + " " + std::to_string(c.nearPlane) + " clips the whole model (its farthest point is " +
+                            std::to_string(farthest) + " m from the camera)");
             std::string base = c.name;
             for (int k = 2; names.count(c.name); ++k) c.name = base + "_" + std::to_string(k);
             names.insert(c.name);
@@ -872,12 +900,15 @@ private:
     }
 
     const tinygltf::Model& model_;
+    const GltfValue& json_;   // the same file's JSON, for what tinygltf reads lossily (scene/gltf_json.h)
+    const GltfValue* rawNodes_ = jsonMember(&json_, "nodes");   // its "nodes" (looked up once: DAGs visit 2^20)
     std::string file_;
     Warnings warnings_;
     Scene scene_;
     std::map<std::tuple<int, bool, float, float, int>, int> textureCache_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> primitivesOfMesh_;
     std::vector<Camera> gltfCameras_;
+    std::vector<std::string> gltfCameraKeys_;   // "<file>: cameras[i].perspective.znear" of each, for messages
     std::vector<Light> gltfLights_;
     std::vector<std::pair<std::string, std::string>> imageFileProblems_;
     int defaultMaterial_ = -1;
@@ -948,13 +979,13 @@ bool fsReadWholeFile(std::vector<unsigned char>* out, std::string* err, const st
     if (ec) return fail("cannot resolve the path");
     if (!access.allowOutside && !isInside(resolved, access.root))
         return fail("refused: the URI leads outside the model's folder to " + resolved.string() + " (--allow-outside-uris permits it)");
-    if (!std::filesystem::is_regular_file(resolved, ec)) return fail("not a regular file");
-    uint64_t size = std::filesystem::file_size(resolved, ec);
-    if (ec || size > kMaxModelFileBytes)
-        return fail("larger than the limit of " + std::to_string(kMaxModelFileBytes) + " bytes");
-    std::ifstream in(resolved, std::ios::binary);
-    out->resize(size_t(size));
-    if (!in || !in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return fail("read error");
+    try {
+        // The one reader of input files (core/files.h): a regular file within the model-file limit.
+        readInputFile(resolved, kModelPartInput, *out);
+    } catch (const Error& e) {
+        std::string why = e.what();
+        return fail(why.substr(std::min(why.size(), resolved.string().size() + 2)));   // the reason, without the path
+    }
     return true;
 }
 
@@ -965,34 +996,21 @@ bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<un
 
 uint32_t littleEndian32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
-// Reads the model file after checking what can be checked from its size and first bytes, so a huge or wrong
-// file is refused before it is read whole.
-std::vector<unsigned char> readModelFile(const std::filesystem::path& path, bool binary) {
-    const std::string file = path.string();
-    std::error_code ec;
-    uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) throw Error(file + ": cannot read (" + ec.message() + ")");
-    if (size > kMaxModelFileBytes)
-        throw Error(file + ": " + std::to_string(size) + " bytes exceed the limit of " + std::to_string(kMaxModelFileBytes));
-    std::ifstream in(path, std::ios::binary);
-    unsigned char head[12] = {};
-    in.read(reinterpret_cast<char*>(head), sizeof head);
-    size_t got = size_t(in.gcount());
+// Checks the first bytes of a model file: the GLB header, or that a .gltf starts with '{' (after a BOM and blanks).
+void checkModelHeader(const std::vector<unsigned char>& bytes, const std::string& file, bool binary) {
+    const size_t got = std::min<size_t>(bytes.size(), 12);
+    const unsigned char* head = bytes.data();
     if (binary) {
         // GLB header (glTF 4.4.3): magic "glTF", version, total length.
         if (got < 12 || std::memcmp(head, "glTF", 4) != 0) throw Error(file + ": not a binary glTF (no 'glTF' magic)");
         uint32_t version = littleEndian32(head + 4), length = littleEndian32(head + 8);
         if (version != 2) throw Error(file + ": GLB header version " + std::to_string(version) + " (only 2 is supported)");
-        if (length > size) throw Error(file + ": GLB header length " + std::to_string(length) + " exceeds the file's " + std::to_string(size) + " bytes");
+        if (length > bytes.size()) throw Error(file + ": GLB header length " + std::to_string(length) + " exceeds the file's " + std::to_string(bytes.size()) + " bytes");
     } else {
         size_t at = got >= 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF ? 3 : 0;
         while (at < got && std::isspace(head[at])) ++at;
         if (got > 0 && at < got && head[at] != '{') throw Error(file + ": not a JSON glTF (does not start with '{')");
     }
-    std::vector<unsigned char> bytes(static_cast<size_t>(size));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) throw Error(file + ": read error");
-    return bytes;
 }
 
 }  // namespace
@@ -1002,12 +1020,13 @@ void setAllowOutsideUris(bool allow) { allowOutsideUris = allow; }
 Scene loadGltfScene(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(file + ": glTF file not found");
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error(file + ": not a regular file");
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
     const bool binary = ext == ".glb";
-    std::vector<unsigned char> bytes = readModelFile(path, binary);
+    static_assert(kModelFileInput.maxBytes == kMaxModelFileBytes, "one model-file limit");
+    std::vector<unsigned char> bytes;
+    readInputFile(path, kModelFileInput, bytes);   // a regular file within the limit, else one line naming it
+    checkModelHeader(bytes, file, binary);
 
     FileAccess access;
     access.root = std::filesystem::weakly_canonical(std::filesystem::absolute(path).parent_path(), ec);
@@ -1032,8 +1051,11 @@ Scene loadGltfScene(const std::filesystem::path& path) {
             throw Error(file + ": requires extension " + refused + ", which Glimmer cannot read");
         throw Error(file + ": cannot load glTF (" + firstLine(error.empty() ? "unknown error" : error) + ")");
     }
+    // What tinygltf reads lossily is read from the JSON itself, after a pre-scan (scene/gltf_json.h).
+    const GltfValue json = parseGltfJson(bytes.data(), bytes.size(), binary, file);
+    checkGltfJson(json, file);
     bytes = {};
-    SceneBuilder builder(model, file);
+    SceneBuilder builder(model, json, file);
     // tinygltf reports missing images and similar non-fatal problems as warnings, one per line. Its lines about
     // external image files ("File not found : X", "File read error : X : why", "Failed to load external 'uri' for
     // image[i] ...") become the reason in the builder's one warning per image, which names the file.

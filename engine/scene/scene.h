@@ -2,6 +2,7 @@
 // Built-in scenes are generated (builtin_scenes.cpp); glTF and scene files fill the same structures.
 #pragma once
 #include <glm/glm.hpp>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -94,7 +95,19 @@ struct Material {
     int clearcoatRoughnessTexture = -1;
     int clearcoatNormalTexture = -1;  // its normalTextureInfo.scale is baked into the texture
     glm::mat3 uvTransform{1.0f};  // KHR_texture_transform, applied to UV0 for every texture of the material
+
+    // The density scale the shaders see (GlintSurface::densityScale): zero when the glint material has no facets
+    // (density 0), so every method renders no glints there, as where the density texture is 0. (Through the
+    // methods' log-density parameters, ln 0 was clamped up to 0, one facet per unit UV area: sparse bright glints.)
+    float shadingDensityScale() const { return glint.density > 0.0f ? glintDensityScale : 0.0f; }
 };
+
+// Every texture index of a material (for rebasing when models are merged into one scene: a slot left out here
+// would keep indexing the first model's textures).
+inline std::array<int*, 9> materialTextureSlots(Material& m) {
+    return {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture, &m.glintMaskTexture,
+            &m.emissiveTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture};
+}
 
 enum class LightType : int { Directional = 0, Point = 1, Spot = 2 };
 

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "core/error.h"
 #include "core/files.h"
@@ -306,7 +308,7 @@ Camera readCamera(const Reader& r, const Json& o, const std::string& where) {
     if (glm::length(c.target - c.position) < 1e-6f) r.fail(where, "position and target coincide");
     if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-6f) r.fail(where + ".up", "parallel to the view direction");
     c.verticalFovDegrees = r.number(o, "fov", where, c.verticalFovDegrees, 1.0f, 170.0f);
-    c.nearPlane = r.number(o, "near", where, c.nearPlane, 1e-5f, 1e3f);
+    c.nearPlane = r.number(o, "near", where, c.nearPlane, kMinCameraNear, kMaxCameraNear);
     return c;
 }
 
@@ -327,7 +329,7 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
     for (MeshData& mesh : model.meshes) scene.meshes.push_back(std::move(mesh));
     for (TextureData& texture : model.textures) scene.textures.push_back(std::move(texture));
     for (Material m : model.materials) {
-        for (int* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture, &m.glintMaskTexture})
+        for (int* t : materialTextureSlots(m))
             if (*t >= 0) *t += textureBase;
         m.glinty = r.boolean(o, "glinty", where, m.glinty);
         m.glintDensityScale = r.number(o, "glintDensityScale", where, m.glintDensityScale, 0.0f, 1e6f);
@@ -340,11 +342,13 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
     for (size_t i = materialBase; i < scene.materials.size(); ++i) scene.materials[i].surfacePerUvArea *= areaScale;
     // The model's cameras (its framing camera, named after the file, and its own) and its KHR_lights_punctual
     // lights come along under the model's transform; a `cameras` key replaces them, `lights` adds to them.
+    std::unordered_set<std::string> cameraNames;
+    for (const Camera& c : scene.cameras) cameraNames.insert(c.name);
     for (Camera c : model.cameras) {
         if (c.name == "default") c.name = path.stem().string();
         std::string base = c.name;
-        for (int k = 2; std::any_of(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& o) { return o.name == c.name; }); ++k)
-            c.name = base + "_" + std::to_string(k);
+        for (int k = 2; cameraNames.count(c.name); ++k) c.name = base + "_" + std::to_string(k);
+        cameraNames.insert(c.name);
         c.position = glm::vec3(transform * glm::vec4(c.position, 1.0f));
         c.target = glm::vec3(transform * glm::vec4(c.target, 1.0f));
         c.up = glm::normalize(glm::vec3(transform * glm::vec4(c.up, 0.0f)));
@@ -363,13 +367,27 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
         }
 }
 
-uint32_t findByName(const Reader& r, const std::vector<std::string>& names, const Json& o, const char* key, const std::string& where) {
+// Names to indices; a name given twice resolves to its last entry (a scene file's material overrides a model's).
+using NameIndex = std::unordered_map<std::string, uint32_t>;
+template <class T>
+NameIndex indexByName(const std::vector<T>& items) {
+    NameIndex index;
+    index.reserve(items.size());
+    for (size_t i = 0; i < items.size(); ++i) index[items[i].name] = uint32_t(i);
+    return index;
+}
+
+uint32_t findByName(const Reader& r, const NameIndex& names, const Json& o, const char* key, const std::string& where) {
     std::string name = r.string(o, key, where);
-    for (size_t i = names.size(); i-- > 0;)
-        if (names[i] == name) return uint32_t(i);
-    std::string known;
-    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-    r.fail(where + "." + key, "no " + std::string(key) + " named '" + name + "' (have: " + known + ")");
+    if (auto it = names.find(name); it != names.end()) return it->second;
+    // Name a few of the known ones (sorted), not all: a scene may have 100k materials.
+    std::vector<std::string> known;
+    for (const auto& entry : names) known.push_back(entry.first);
+    std::sort(known.begin(), known.end());
+    std::string list;
+    for (size_t i = 0; i < known.size() && i < 20; ++i) list += (list.empty() ? "" : ", ") + known[i];
+    if (known.size() > 20) list += ", ... (" + std::to_string(known.size()) + " in all)";
+    r.fail(where + "." + key, "no " + std::string(key) + " named '" + name.substr(0, 200) + "' (have: " + list + ")");
 }
 
 // User glint methods the scene comes with (glints/user/user_methods.h), relative to the scene file; loaded by the
@@ -388,33 +406,60 @@ std::vector<std::string> methodFilesOf(const Reader& r, const Json& doc, const s
     return files;
 }
 
+// nlohmann's DOM parser, remembering the last key read so that a syntax error can name its field. (A parse
+// callback did this before, but nlohmann's callback parser rescans the enclosing array at the end of every
+// object: 100k materials took 7 s.)
+struct KeyTrackingParser {
+    explicit KeyTrackingParser(Json& doc) : dom(doc, true) {}
+    nlohmann::detail::json_sax_dom_parser<Json> dom;
+    std::string lastKey;
+
+    bool null() { return dom.null(); }
+    bool boolean(bool v) { return dom.boolean(v); }
+    bool number_integer(Json::number_integer_t v) { return dom.number_integer(v); }
+    bool number_unsigned(Json::number_unsigned_t v) { return dom.number_unsigned(v); }
+    bool number_float(Json::number_float_t v, const std::string& s) { return dom.number_float(v, s); }
+    bool string(std::string& v) { return dom.string(v); }
+    bool binary(Json::binary_t& v) { return dom.binary(v); }
+    bool start_object(std::size_t n) { return dom.start_object(n); }
+    bool key(std::string& k) {
+        lastKey = k.substr(0, 200);
+        return dom.key(k);
+    }
+    bool end_object() { return dom.end_object(); }
+    bool start_array(std::size_t n) { return dom.start_array(n); }
+    bool end_array() { return dom.end_array(); }
+    template <class Exception>
+    bool parse_error(std::size_t position, const std::string& token, const Exception& ex) { return dom.parse_error(position, token, ex); }
+};
+
 }  // namespace
 
 std::vector<std::string> readSceneMethodFiles(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) > kMaxSceneFileBytes) return {};
-    Json doc = Json::parse(readTextFile(path), nullptr, false);
+    std::string text;
+    try {
+        text = readInputFile(path, kSceneFileInput);
+    } catch (const Error&) {
+        return {};   // loadSceneFile reports it
+    }
+    Json doc = Json::parse(text, nullptr, false);
     if (doc.is_discarded()) return {};   // loadSceneFile reports the syntax error with its position
     return methodFilesOf(Reader(path), doc, path);
 }
 
 Scene loadSceneFile(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(path.string() + ": scene file not found");
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error(path.string() + ": scene file is not a regular file");
-    if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes)
-        throw Error(path.string() + ": scene file larger than the limit of " + std::to_string(kMaxSceneFileBytes) + " bytes");
+    // readInputFile: a regular file within kSceneFileInput's limit, else one line naming the path.
+    static_assert(kSceneFileInput.maxBytes == kMaxSceneFileBytes, "one scene-file limit");
+    const std::string text = readInputFile(path, kSceneFileInput);
     Reader r(path);
     Json doc;
-    std::string lastKey;  // the key being read when parsing fails, to name the field
+    KeyTrackingParser parser(doc);
     try {
-        doc = Json::parse(readTextFile(path), [&](int, Json::parse_event_t event, Json& parsed) {
-            if (event == Json::parse_event_t::key && parsed.is_string()) lastKey = parsed.get<std::string>();
-            return true;
-        });
+        Json::sax_parse(text, &parser);
     } catch (const Json::exception& e) {
         // parse_error, and out_of_range for numbers such as 1e309 that overflow a double.
         std::string what = e.what();
+        const std::string& lastKey = parser.lastKey;
         throw Error(path.string() + ": invalid JSON" + (lastKey.empty() ? "" : " at key '" + lastKey + "'") + " (" +
                     what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2) + ")");
     }
@@ -455,24 +500,25 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     for (size_t i = 0; i < meshes.size(); ++i) scene.meshes.push_back(generatedMesh(r, meshes[i], at("meshes", i)));
 
     const Json& materials = array("materials");
+    // A material named like an existing one overrides the first of that name (a model's), as before the index.
+    std::unordered_map<std::string, size_t> firstMaterial;
+    for (size_t i = scene.materials.size(); i-- > 0;) firstMaterial[scene.materials[i].name] = i;
     for (size_t i = 0; i < materials.size(); ++i) {
         std::string where = at("materials", i);
         std::string name = r.string(materials[i], "name", where);
         if (name.empty()) r.fail(where + ".name", "every material needs a name");
-        auto existing = std::find_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) { return m.name == name; });
-        if (existing == scene.materials.end()) {
+        if (auto existing = firstMaterial.find(name); existing == firstMaterial.end()) {
             Material m;
             m.name = name;
             readMaterial(scene, r, materials[i], where, m);
+            firstMaterial[name] = scene.materials.size();
             scene.materials.push_back(m);
         } else {
-            readMaterial(scene, r, materials[i], where, *existing);
+            readMaterial(scene, r, materials[i], where, scene.materials[existing->second]);
         }
     }
 
-    std::vector<std::string> meshNames, materialNames;
-    for (const MeshData& m : scene.meshes) meshNames.push_back(m.name);
-    for (const Material& m : scene.materials) materialNames.push_back(m.name);
+    const NameIndex meshNames = indexByName(scene.meshes), materialNames = indexByName(scene.materials);
     const Json& instances = array("instances");
     for (size_t i = 0; i < instances.size(); ++i) {
         std::string where = at("instances", i);
@@ -498,21 +544,21 @@ Scene loadSceneFile(const std::filesystem::path& path) {
     if (doc.contains("cameras")) {
         scene.cameras.clear();
         const Json& cameras = array("cameras");
+        std::unordered_set<std::string> names;
         for (size_t i = 0; i < cameras.size(); ++i) {
             Camera c = readCamera(r, cameras[i], at("cameras", i));
-            for (const Camera& other : scene.cameras)
-                if (other.name == c.name) r.fail(at("cameras", i) + ".name", "duplicate camera name '" + c.name + "'");
+            if (!names.insert(c.name).second) r.fail(at("cameras", i) + ".name", "duplicate camera name '" + c.name + "'");
             scene.cameras.push_back(c);
         }
     }
     if (doc.contains("walkthrough")) {
         const Json& order = array("walkthrough");
         scene.walkthrough.clear();
+        const NameIndex cameraNames = indexByName(scene.cameras);
         for (size_t i = 0; i < order.size(); ++i) {
             if (!order[i].is_string()) r.fail(at("walkthrough", i), "expected a camera name");
             std::string name = order[i].get<std::string>();
-            bool known = std::any_of(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& c) { return c.name == name; });
-            if (!known) r.fail(at("walkthrough", i), "no camera named '" + name + "'");
+            if (!cameraNames.count(name)) r.fail(at("walkthrough", i), "no camera named '" + name.substr(0, 200) + "'");
             scene.walkthrough.push_back(name);
         }
     }

@@ -17,5 +17,6 @@ constexpr uint64_t kMaxInstances = uint64_t(1) << 20;            // mesh instanc
 constexpr uint64_t kMaxInstancedTriangles = uint64_t(1) << 30;   // triangles drawn per frame over all instances
 constexpr uint64_t kMaxSceneFileBytes = uint64_t(64) << 20;      // a .json scene file
 constexpr float kMaxCoordinate = 1e7f;                           // |x|, |y|, |z| of world positions, metres
+constexpr float kMinCameraNear = 1e-5f, kMaxCameraNear = 1e3f;   // a camera's near plane, metres (scene files, glTF)
 
 }  // namespace glimmer

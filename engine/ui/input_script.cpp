@@ -78,7 +78,7 @@ std::vector<ScriptEvent> parseInputScript(const std::string& text, const std::st
 }
 
 std::vector<ScriptEvent> readInputScript(const std::filesystem::path& file) {
-    return parseInputScript(readTextFile(file), file.string());
+    return parseInputScript(readInputFile(file, kInputScriptInput), file.string());
 }
 
 const ScriptEvent* ScriptPlayer::nextDue(double seconds) {

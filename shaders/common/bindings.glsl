@@ -11,6 +11,7 @@
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
 #define BINDING_SHADOWS 4            // uniform ShadowBlock (shadows/shadows.glsl; C++ render/shadows/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
+#define BINDING_METHOD_OUTPUT 5      // storage (not the uniform 5 above): counters of what the glint method produced (render/frame/method_output_check.h)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
 #define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (environment/prefiltered_lookup.glsl; C++ ProbeUniforms, render/probes/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (environment/prefiltered_lookup.glsl)

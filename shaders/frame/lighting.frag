@@ -13,6 +13,7 @@
 #include "common/clearcoat.glsl"
 #include "common/light_incidence.glsl"
 #include "common/plane_aware_upsample.glsl"
+#include "frame/method_output_check.glsl"
 #ifdef SHADOWS
 #include "shadows/shadows.glsl"
 #endif
@@ -21,6 +22,10 @@ vec3 finiteOrZero(vec3 c) {
     bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
     return any(bad) ? vec3(0.0) : c;
 }
+
+// Radiance as it may reach the frame: finite and not negative (a negative D gave negative radiance in the EXR and
+// a white PNG). Counted before this in flushMethodOutput.
+vec3 plausibleRadiance(vec3 c) { return max(finiteOrZero(c), vec3(0.0)); }
 
 // A method with lighting targets of its own (GLINT_METHOD_TARGETS; shaders/glints/README.md, "Lighting targets")
 // declares them at locations 2.. and the hooks glintTakeLightGlint, glintScaleTargets and glintWriteTargets.
@@ -173,6 +178,7 @@ struct LightSum {
     vec3 glintPart;         // the lights' specular on glinty pixels (inside radiance; TAA's glint part)
     float firstLightD;      // the glint AOV: D of light 0
     float firstLightVisibility;
+    MethodOutputTally tally;   // what the method's D looked like (frame/method_output_check.glsl)
 };
 
 // Adds every light's diffuse and specular to `radiance` (the base layer) and its coat lobe to `coatRadiance`.
@@ -182,7 +188,9 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
     sum.glintPart = vec3(0.0);
     sum.firstLightD = 0.0;
     sum.firstLightVisibility = 0.0;
+    sum.tally = methodOutputTally();
     GlintSurface s = p.s;
+    const bool sampledPixel = methodOutputSampled(s.pixel);
     bool coated = coat.weight > 0.0;
     int view = u_viewport.w;
     int lightCount = int(u_exposure.y);
@@ -216,10 +224,12 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = p.glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        if (p.glinty) tallyColorD(sum.tally, colorD, sampledPixel, h, s.alpha, s.ndf);
         float D = dot(colorD, vec3(1.0 / 3.0));
         vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
 #else
         float D = p.glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        if (p.glinty) tallyD(sum.tally, D, sampledPixel, h, s.alpha, s.ndf);
         vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
 #endif
         if (i == 0) sum.firstLightD = D;
@@ -332,10 +342,13 @@ void main() {
     }
 
     vec4 result = debugView(view, p, glint, radiance, lights, occlusion, coatTexelView);
-    o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+    // Debug views pass signed values through (normals); the final radiance is finite and non-negative.
+    vec3 shown = view == VIEW_FINAL ? plausibleRadiance(result.rgb) : finiteOrZero(result.rgb);
+    flushMethodOutput(lights.tally, view == VIEW_FINAL ? result.rgb : vec3(0.0));
+    o_color = vec4(shown, isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
     // Methods with lighting targets add their (blurred) glints after this pass: TAA clips them with the rest.
     bool finiteResult = all(equal(o_color.rgb, result.rgb));
-    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
+    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? plausibleRadiance(glintPart) : vec3(0.0), 0.0);
 #ifdef GLINT_METHOD_TARGETS
     glintWriteTargets(p.glinty, view == VIEW_FINAL);
 #endif

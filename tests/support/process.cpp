@@ -52,7 +52,14 @@ ProcessResult runGlimmer(const std::vector<std::string>& args, const std::vector
     for (std::string& a : argStrings) argv.push_back(a.data());
     argv.push_back(nullptr);
     std::vector<std::string> envStrings;
-    for (char** e = environ; *e; ++e) envStrings.push_back(*e);
+    // extraEnv replaces variables of the same name (getenv would find the inherited one first).
+    auto overridden = [&](const std::string& entry) {
+        for (const std::string& extra : extraEnv)
+            if (extra.substr(0, extra.find('=') + 1) == entry.substr(0, entry.find('=') + 1)) return true;
+        return false;
+    };
+    for (char** e = environ; *e; ++e)
+        if (!overridden(*e)) envStrings.push_back(*e);
     envStrings.insert(envStrings.end(), extraEnv.begin(), extraEnv.end());
     std::vector<char*> envp;
     for (std::string& e : envStrings) envp.push_back(e.data());

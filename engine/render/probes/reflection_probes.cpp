@@ -53,7 +53,7 @@ void buildKey(const Scene& scene, const RenderSettings& settings, const ProbeSet
     }
     for (const Material& m : scene.materials)
         key.insert(key.end(), {m.baseColor[0], m.baseColor[1], m.baseColor[2], m.baseColor[3], m.alpha, m.metallic,
-                               float(int(m.ndf)), float(m.glinty), m.glintDensityScale, m.alphaCutoff,
+                               float(int(m.ndf)), float(m.glinty), m.shadingDensityScale(), m.alphaCutoff,
                                float(m.doubleSided), float(m.baseColorTexture), float(m.metallicRoughnessTexture),
                                float(m.normalTexture)});
     for (const Light& l : scene.lights)
