@@ -1,0 +1,171 @@
+#include "reference/discrete_facets/facet_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glimmer::facets {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGaussianFootprintRadius = 3.5;   // Mahalanobis truncation of the Gaussian footprint
+constexpr double kBoundaryTolerance = 1e-9;        // in footprint coordinates: the closed parallelogram
+
+// 8-point Gauss-Legendre rule on [0, 1] (nodes and weights of [-1, 1] halved).
+constexpr double kGlNodes[8] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355, 0.4082826787521751,
+                                0.5917173212478249, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681};
+constexpr double kGlWeights[8] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+                                  0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+
+// A unit tangent around h (the surface tangent x projected off h) and its bitangent: the axes of the anisotropic lobe.
+void lobeAxes(const glm::dvec3& h, glm::dvec3& t, glm::dvec3& b) {
+    t = glm::dvec3(1.0, 0.0, 0.0) - h * h.x;
+    double len = glm::length(t);
+    if (len < 1e-9) {
+        t = glm::dvec3(0.0, 1.0, 0.0) - h * h.y;
+        len = glm::length(t);
+    }
+    t /= len;
+    b = glm::cross(h, t);
+}
+}  // namespace
+
+FacetEstimator::FacetEstimator(const FacetMaterial& material, FootprintFilter filter)
+    : realization_(material), filter_(filter) {
+    if (filter_ == FootprintFilter::Gaussian)
+        truncatedMass_ = 1.0 - std::exp(-0.5 * kGaussianFootprintRadius * kGaussianFootprintRadius);
+}
+
+double FacetEstimator::smoothD(const glm::dvec3& h) const {
+    if (h.z <= 0.0) return 0.0;
+    const double a2 = material().alpha * material().alpha, c2 = h.z * h.z;
+    if (material().ndf == kNdfBeckmann) {
+        double tan2 = (1.0 - c2) / c2;
+        return std::exp(-tan2 / a2) / (kPi * a2 * c2 * c2);
+    }
+    double d = c2 * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+
+double FacetEstimator::lobeWeight(const glm::dvec3& m, const glm::dvec3& h) const {
+    const FacetMaterial& mat = material();
+    const double c = std::clamp(glm::dot(m, h), -1.0, 1.0);
+    if (mat.anisotropy == 1.0 && mat.lobe == Lobe::Cone) return c >= std::cos(mat.gamma) ? 1.0 : 0.0;
+    double theta = std::acos(c);
+    if (mat.anisotropy != 1.0) {
+        glm::dvec3 t, b;
+        lobeAxes(h, t, b);
+        double x = glm::dot(m, t), y = glm::dot(m, b), r2 = x * x + y * y;
+        if (r2 > 0.0) theta *= std::sqrt((x * x / mat.anisotropy + mat.anisotropy * y * y) / r2);
+    }
+    if (mat.lobe == Lobe::Cone) return theta <= mat.gamma ? 1.0 : 0.0;
+    const double sigma = mat.gamma / std::sqrt(2.0);
+    return theta <= 4.0 * sigma ? std::exp(-theta * theta / (2.0 * sigma * sigma)) : 0.0;
+}
+
+template <class Integrand> double FacetEstimator::lobeIntegral(const glm::dvec3& h, Integrand&& integrand) const {
+    const FacetMaterial& mat = material();
+    const double a = mat.anisotropy;
+    const double sigma = mat.gamma / std::sqrt(2.0);
+    const double reach = mat.lobe == Lobe::Cone ? mat.gamma : 4.0 * sigma;
+    // Azimuth nodes: the lobe's extent varies as 1 / sqrt(cos^2 / a + a sin^2), sharper for larger a.
+    const int azimuths = 32 * int(std::ceil(std::sqrt(a)));
+    glm::dvec3 t, b;
+    lobeAxes(h, t, b);
+    double sum = 0.0;
+    for (int j = 0; j < azimuths; ++j) {
+        double psi = 2.0 * kPi * (double(j) + 0.5) / double(azimuths);
+        double cp = std::cos(psi), sp = std::sin(psi);
+        double stretch = std::sqrt(cp * cp / a + a * sp * sp);   // theta_eff = theta x stretch
+        double thetaMax = reach / stretch;
+        glm::dvec3 axis = cp * t + sp * b;
+        for (int k = 0; k < 8; ++k) {
+            double theta = thetaMax * kGlNodes[k];
+            double kernel = 1.0;
+            if (mat.lobe == Lobe::Gaussian) {
+                double e = theta * stretch;
+                kernel = std::exp(-e * e / (2.0 * sigma * sigma));
+            }
+            glm::dvec3 m = std::cos(theta) * h + std::sin(theta) * axis;
+            sum += kGlWeights[k] * thetaMax * std::sin(theta) * kernel * integrand(m);
+        }
+    }
+    return sum * 2.0 * kPi / double(azimuths);
+}
+
+double FacetEstimator::lobeProbability(const glm::dvec3& h) const {
+    return lobeIntegral(h, [this](const glm::dvec3& m) { return m.z > 0.0 ? smoothD(m) * m.z : 0.0; });
+}
+
+double FacetEstimator::lobeSolidAngle(const glm::dvec3& h) const {
+    return lobeIntegral(h, [](const glm::dvec3&) { return 1.0; });
+}
+
+double FacetEstimator::footprintArea(const PixelFootprint& fp) {
+    return std::abs(fp.duvdx.x * fp.duvdy.y - fp.duvdx.y * fp.duvdy.x);
+}
+
+double FacetEstimator::footprintWeight(const PixelFootprint& fp, const glm::dvec2& uv) const {
+    const double det = fp.duvdx.x * fp.duvdy.y - fp.duvdx.y * fp.duvdy.x;
+    if (!(std::abs(det) > 1e-300)) return 0.0;
+    const glm::dvec2 d = uv - fp.uv;
+    if (filter_ == FootprintFilter::Box) {
+        // Footprint coordinates (s, t): uv = centre + s duv/dx + t duv/dy.
+        double s = (fp.duvdy.y * d.x - fp.duvdy.x * d.y) / det;
+        double t = (fp.duvdx.x * d.y - fp.duvdx.y * d.x) / det;
+        const double edge = 0.5 + kBoundaryTolerance;
+        return std::abs(s) <= edge && std::abs(t) <= edge ? 1.0 / std::abs(det) : 0.0;
+    }
+    // Covariance J J^T / 12 (a unit square's second moments mapped by J).
+    const double sxx = (fp.duvdx.x * fp.duvdx.x + fp.duvdy.x * fp.duvdy.x) / 12.0;
+    const double syy = (fp.duvdx.y * fp.duvdx.y + fp.duvdy.y * fp.duvdy.y) / 12.0;
+    const double sxy = (fp.duvdx.x * fp.duvdx.y + fp.duvdy.x * fp.duvdy.y) / 12.0;
+    const double detS = sxx * syy - sxy * sxy;
+    if (!(detS > 0.0)) return 0.0;
+    const double q = (syy * d.x * d.x - 2.0 * sxy * d.x * d.y + sxx * d.y * d.y) / detS;
+    const double r = kGaussianFootprintRadius;
+    if (q > r * r * (1.0 + 2.0 * kBoundaryTolerance)) return 0.0;
+    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(detS) * truncatedMass_);
+}
+
+bool FacetEstimator::footprintBounds(const PixelFootprint& fp, glm::dvec2& lo, glm::dvec2& hi) const {
+    if (!(footprintArea(fp) > 1e-300)) return false;
+    glm::dvec2 half;
+    if (filter_ == FootprintFilter::Box) {
+        half = 0.5 * (glm::abs(fp.duvdx) + glm::abs(fp.duvdy));
+    } else {
+        const double sxx = (fp.duvdx.x * fp.duvdx.x + fp.duvdy.x * fp.duvdy.x) / 12.0;
+        const double syy = (fp.duvdx.y * fp.duvdx.y + fp.duvdy.y * fp.duvdy.y) / 12.0;
+        half = kGaussianFootprintRadius * glm::dvec2(std::sqrt(sxx), std::sqrt(syy));
+    }
+    // Widened a little, so that the exact test above (with its boundary tolerance) decides at the edges.
+    half = half * (1.0 + 1e-6) + glm::dvec2(1e-9 * (std::abs(fp.uv.x) + std::abs(fp.uv.y)));
+    lo = fp.uv - half;
+    hi = fp.uv + half;
+    return std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y);
+}
+
+FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec3& h) const {
+    FacetEstimate result;
+    if (h.z <= 0.0) return result;
+    const double rho = material().densityPerUv;
+    const double d = smoothD(h), p = lobeProbability(h);
+    if (!(rho > 0.0) || !(p > 0.0)) return result;
+    FacetRegion region = realization_.lobeRegion(h);
+    if (!footprintBounds(fp, region.uvMin, region.uvMax)) return result;
+    glm::dvec3 sum(0.0);
+    long tested = 0;
+    realization_.forEach(region, [&](const Facet& f) {
+        ++tested;
+        double w = footprintWeight(fp, f.uv);
+        if (w <= 0.0) return;
+        double k = lobeWeight(f.m, h);
+        if (k > 0.0) sum += (w * k) * f.color;
+    });
+    result.d = sum * (d / (rho * p));
+    result.ratio = (result.d.x + result.d.y + result.d.z) / (3.0 * d);
+    result.lambda = rho * footprintArea(fp) * p;
+    result.facetsTested = tested;
+    return result;
+}
+
+}  // namespace glimmer::facets
