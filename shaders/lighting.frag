@@ -285,7 +285,7 @@ void main() {
         case VIEW_DUVDY: result = vec4(s.duvdy, 0.0, 1.0); break;
         case VIEW_GLINT: result = vec4(vec3(firstLightD), 1.0); break;
         case VIEW_FOOTPRINT: result = glintFootprintAOV(glint, s); break;
-        case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
+        case VIEW_TANGENT: result = vec4(s.t, duvdyMaterial.w); break;   // a: bitangent sign
         case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
         case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
         case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;

@@ -15,7 +15,7 @@ const std::vector<AovInfo>& aovTable() {
         {"duvdy", 6, "UV derivative along screen y"},
         {"glint", 7, "the NDF term D of the first light alone (linear)"},
         {"footprint", 8, "footprint: R anisotropy ratio, G LOD, B/A method-specific"},
-        {"tangent", 9, "world-space tangent"},
+        {"tangent", 9, "world-space tangent; a: the bitangent's sign (b = a cross(n, t))"},
         {"material", 10, "R alpha, G metallic, B material id"},
         {"extra", 11, "method-specific debug channel (see the method's documentation)"},
         {"ao", 13, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},
