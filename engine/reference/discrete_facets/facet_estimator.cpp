@@ -46,27 +46,27 @@ double FacetEstimator::smoothD(const glm::dvec3& h) const {
     return a2 / (kPi * d * d);
 }
 
-double FacetEstimator::lobeWeight(const glm::dvec3& m, const glm::dvec3& h) const {
+FacetEstimator::LobeTest FacetEstimator::lobeTest(const glm::dvec3& h) const {
     const FacetMaterial& mat = material();
-    const double c = std::clamp(glm::dot(m, h), -1.0, 1.0);
-    if (mat.anisotropy == 1.0 && mat.lobe == Lobe::Cone) return c >= std::cos(mat.gamma) ? 1.0 : 0.0;
-    double theta = std::acos(c);
-    if (mat.anisotropy != 1.0) {
-        glm::dvec3 t, b;
-        lobeAxes(h, t, b);
-        double x = glm::dot(m, t), y = glm::dot(m, b), r2 = x * x + y * y;
-        if (r2 > 0.0) theta *= std::sqrt((x * x / mat.anisotropy + mat.anisotropy * y * y) / r2);
-    }
-    if (mat.lobe == Lobe::Cone) return theta <= mat.gamma ? 1.0 : 0.0;
+    LobeTest test;
+    test.h = h;
+    lobeAxes(h, test.t, test.b);
+    test.anisotropy = mat.anisotropy;
+    test.cone = mat.lobe == Lobe::Cone;
+    test.cosGamma = std::cos(mat.gamma);
     const double sigma = mat.gamma / std::sqrt(2.0);
-    return theta <= 4.0 * sigma ? std::exp(-theta * theta / (2.0 * sigma * sigma)) : 0.0;
+    const double reach = test.cone ? std::sin(mat.gamma) : 4.0 * sigma;
+    test.reach2 = reach * reach;
+    test.inverseTwoSigma2 = 1.0 / (2.0 * sigma * sigma);
+    return test;
 }
 
 template <class Integrand> double FacetEstimator::lobeIntegral(const glm::dvec3& h, Integrand&& integrand) const {
     const FacetMaterial& mat = material();
     const double a = mat.anisotropy;
     const double sigma = mat.gamma / std::sqrt(2.0);
-    const double reach = mat.lobe == Lobe::Cone ? mat.gamma : 4.0 * sigma;
+    const bool cone = mat.lobe == Lobe::Cone;
+    const double reach = cone ? std::sin(mat.gamma) : 4.0 * sigma;   // of e = sin(theta) x stretch (LobeTest)
     // Azimuth nodes: the lobe's extent varies as 1 / sqrt(cos^2 / a + a sin^2), sharper for larger a.
     const int azimuths = 32 * int(std::ceil(std::sqrt(a)));
     glm::dvec3 t, b;
@@ -75,14 +75,14 @@ template <class Integrand> double FacetEstimator::lobeIntegral(const glm::dvec3&
     for (int j = 0; j < azimuths; ++j) {
         double psi = 2.0 * kPi * (double(j) + 0.5) / double(azimuths);
         double cp = std::cos(psi), sp = std::sin(psi);
-        double stretch = std::sqrt(cp * cp / a + a * sp * sp);   // theta_eff = theta x stretch
-        double thetaMax = reach / stretch;
+        double stretch = std::sqrt(cp * cp / a + a * sp * sp);   // e = sin(theta) x stretch
+        double thetaMax = std::asin(std::min(1.0, reach / stretch));
         glm::dvec3 axis = cp * t + sp * b;
         for (int k = 0; k < 8; ++k) {
             double theta = thetaMax * kGlNodes[k];
             double kernel = 1.0;
-            if (mat.lobe == Lobe::Gaussian) {
-                double e = theta * stretch;
+            if (!cone) {
+                double e = std::sin(theta) * stretch;
                 kernel = std::exp(-e * e / (2.0 * sigma * sigma));
             }
             glm::dvec3 m = std::cos(theta) * h + std::sin(theta) * axis;
@@ -100,31 +100,71 @@ double FacetEstimator::lobeSolidAngle(const glm::dvec3& h) const {
     return lobeIntegral(h, [](const glm::dvec3&) { return 1.0; });
 }
 
+double FacetEstimator::lobeRatio(const glm::dvec3& h) const {
+    const int azimuths = material().anisotropy == 1.0 ? 1 : kRatioAzimuthAnisotropic;
+    // Polar nodes at theta_i = (pi / 2) i / (kRatioPolar - 1), azimuth nodes at 2 pi j / azimuths (periodic).
+    std::call_once(ratioTableOnce_, [&] {
+        ratioTable_.resize(size_t(azimuths) * kRatioPolar);
+        for (int j = 0; j < azimuths; ++j)
+            for (int i = 0; i < kRatioPolar; ++i) {
+                double theta = std::min(0.5 * kPi * double(i) / double(kRatioPolar - 1), 0.5 * kPi - 1e-4);
+                double phi = 2.0 * kPi * double(j) / double(azimuths);
+                glm::dvec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+                double d = smoothD(n) * n.z;
+                ratioTable_[size_t(j) * kRatioPolar + size_t(i)] = d > 0.0 ? lobeProbability(n) / d : 0.0;
+            }
+    });
+    const double theta = std::acos(std::clamp(h.z, 0.0, 1.0));
+    double x = theta / (0.5 * kPi) * double(kRatioPolar - 1);
+    int i0 = std::clamp(int(x), 0, kRatioPolar - 2);
+    double tx = std::clamp(x - double(i0), 0.0, 1.0);
+    auto row = [&](int j) {
+        const double* r = &ratioTable_[size_t(j) * kRatioPolar];
+        return r[i0] + (r[i0 + 1] - r[i0]) * tx;
+    };
+    if (azimuths == 1) return row(0);
+    double phi = std::atan2(h.y, h.x) / (2.0 * kPi);
+    if (phi < 0.0) phi += 1.0;
+    double y = phi * double(azimuths);
+    int j0 = int(y) % azimuths;
+    double ty = y - std::floor(y);
+    return row(j0) + (row((j0 + 1) % azimuths) - row(j0)) * ty;
+}
+
 double FacetEstimator::footprintArea(const PixelFootprint& fp) {
     return std::abs(fp.duvdx.x * fp.duvdy.y - fp.duvdx.y * fp.duvdy.x);
 }
 
-double FacetEstimator::footprintWeight(const PixelFootprint& fp, const glm::dvec2& uv) const {
+FacetEstimator::FootprintTest FacetEstimator::footprintTest(const PixelFootprint& fp) const {
+    FootprintTest test;
+    test.centre = fp.uv;
+    test.box = filter_ == FootprintFilter::Box;
     const double det = fp.duvdx.x * fp.duvdy.y - fp.duvdx.y * fp.duvdy.x;
-    if (!(std::abs(det) > 1e-300)) return 0.0;
-    const glm::dvec2 d = uv - fp.uv;
-    if (filter_ == FootprintFilter::Box) {
+    if (!(std::abs(det) > 1e-300) || !footprintBounds(fp, test.lo, test.hi)) return test;
+    if (test.box) {
         // Footprint coordinates (s, t): uv = centre + s duv/dx + t duv/dy.
-        double s = (fp.duvdy.y * d.x - fp.duvdy.x * d.y) / det;
-        double t = (fp.duvdx.x * d.y - fp.duvdx.y * d.x) / det;
-        const double edge = 0.5 + kBoundaryTolerance;
-        return std::abs(s) <= edge && std::abs(t) <= edge ? 1.0 / std::abs(det) : 0.0;
+        test.m00 = fp.duvdy.y / det;
+        test.m01 = -fp.duvdy.x / det;
+        test.m10 = -fp.duvdx.y / det;
+        test.m11 = fp.duvdx.x / det;
+        test.edge = 0.5 + kBoundaryTolerance;
+        test.scale = 1.0 / std::abs(det);
+        test.valid = true;
+        return test;
     }
     // Covariance J J^T / 12 (a unit square's second moments mapped by J).
     const double sxx = (fp.duvdx.x * fp.duvdx.x + fp.duvdy.x * fp.duvdy.x) / 12.0;
     const double syy = (fp.duvdx.y * fp.duvdx.y + fp.duvdy.y * fp.duvdy.y) / 12.0;
     const double sxy = (fp.duvdx.x * fp.duvdx.y + fp.duvdy.x * fp.duvdy.y) / 12.0;
     const double detS = sxx * syy - sxy * sxy;
-    if (!(detS > 0.0)) return 0.0;
-    const double q = (syy * d.x * d.x - 2.0 * sxy * d.x * d.y + sxx * d.y * d.y) / detS;
-    const double r = kGaussianFootprintRadius;
-    if (q > r * r * (1.0 + 2.0 * kBoundaryTolerance)) return 0.0;
-    return std::exp(-0.5 * q) / (2.0 * kPi * std::sqrt(detS) * truncatedMass_);
+    if (!(detS > 0.0)) return test;
+    test.m00 = syy / detS;
+    test.m01 = test.m10 = -sxy / detS;
+    test.m11 = sxx / detS;
+    test.reach2 = kGaussianFootprintRadius * kGaussianFootprintRadius * (1.0 + 2.0 * kBoundaryTolerance);
+    test.scale = 1.0 / (2.0 * kPi * std::sqrt(detS) * truncatedMass_);
+    test.valid = true;
+    return test;
 }
 
 bool FacetEstimator::footprintBounds(const PixelFootprint& fp, glm::dvec2& lo, glm::dvec2& hi) const {
@@ -150,15 +190,19 @@ FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec
     const double rho = material().densityPerUv;
     const double d = smoothD(h), p = lobeProbability(h);
     if (!(rho > 0.0) || !(p > 0.0)) return result;
+    const FootprintTest footprint = footprintTest(fp);
+    if (!footprint.valid) return result;
+    const LobeTest lobe = lobeTest(h);
     FacetRegion region = realization_.lobeRegion(h);
-    if (!footprintBounds(fp, region.uvMin, region.uvMax)) return result;
+    region.uvMin = footprint.lo;
+    region.uvMax = footprint.hi;
     glm::dvec3 sum(0.0);
     long tested = 0;
     realization_.forEach(region, [&](const Facet& f) {
         ++tested;
-        double w = footprintWeight(fp, f.uv);
+        double w = footprint.weight(f.uv);
         if (w <= 0.0) return;
-        double k = lobeWeight(f.m, h);
+        double k = lobe.weight(f.m);
         if (k > 0.0) sum += (w * k) * f.color;
     });
     result.d = sum * (d / (rho * p));

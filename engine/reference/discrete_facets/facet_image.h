@@ -21,6 +21,10 @@ struct SurfacePixel {
     double bitangentSign = 1.0;
     PixelFootprint footprint;
     int material = -1;
+    // For the environment (environment_glints.h): base colour and metalness (F0 = mix(0.04, base, metallic), as
+    // the lighting pass) and the ambient occlusion that multiplies the environment term.
+    glm::dvec3 baseColor{0.8};
+    double metallic = 0.0, occlusion = 1.0;
 };
 
 struct SurfaceImage {

@@ -124,9 +124,10 @@ double FacetRealization::polarUniform(double theta) const {
 }
 
 double FacetRealization::lobeRadius() const {
+    // The lobe holds e = sin(angle) x stretch <= reach (facet_estimator.h LobeTest); stretch >= 1 / sqrt(a).
     const double stretch = std::sqrt(material_.anisotropy);
-    return material_.lobe == Lobe::Cone ? material_.gamma * stretch
-                                        : 4.0 * (material_.gamma / std::sqrt(2.0)) * stretch;
+    const double reach = material_.lobe == Lobe::Cone ? std::sin(material_.gamma) : 4.0 * (material_.gamma / std::sqrt(2.0));
+    return std::asin(std::min(1.0, reach * stretch));
 }
 
 FacetRegion FacetRealization::lobeRegion(const glm::dvec3& h) const {

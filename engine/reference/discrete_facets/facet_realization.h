@@ -35,11 +35,12 @@ namespace glimmer::facets {
 // The shape of one facet's reflection lobe around its normal m (the half vectors h it reflects):
 //  Cone: h reflects when the angle between m and h is at most gamma (the README's definition; solid angle
 //        2 pi (1 - cos gamma) ~ pi gamma^2).
-//  Gaussian: weight exp(-theta^2 / (2 sigma^2)) with sigma = gamma / sqrt(2), the same solid angle
-//        (2 pi sigma^2 = pi gamma^2), truncated at 4 sigma (kernel mass outside 3e-4; the normalization below
+//  Gaussian: weight exp(-sin^2(theta) / (2 sigma^2)) with sigma = gamma / sqrt(2), the same solid angle
+//        (2 pi sigma^2 = pi gamma^2), truncated at sin(theta) = 4 sigma (mass outside 3e-4; the normalization
 //        integrates the same truncated kernel, so the mean stays exact).
-// Anisotropy a >= 1 stretches the lobe along the tangent: semi-axes gamma sqrt(a) (tangent) and gamma / sqrt(a)
-// (bitangent), equal solid angle (kemppinen2025's A* = diag(1 / sqrt a, sqrt a), Sec. 3.3.6).
+// Anisotropy a >= 1 stretches the lobe along the tangent: semi-axes about gamma sqrt(a) (tangent) and
+// gamma / sqrt(a) (bitangent), equal solid angle (kemppinen2025's A* = diag(1 / sqrt a, sqrt a), Sec. 3.3.6); the
+// exact shape is in facet_estimator.h (LobeTest).
 enum class Lobe { Cone = 0, Gaussian = 1 };
 
 constexpr int kNdfGgx = 0, kNdfBeckmann = 1;   // mirror NDF_GGX / NDF_BECKMANN (shaders/common/constants.glsl)

@@ -11,7 +11,10 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/handles.h"
+#include "gl/pipeline_state.h"
+#include "gl/program.h"
 #include "glints/methods.h"
+#include "reference/discrete_facets/environment_glints.h"
 #include "render/aov.h"
 
 namespace glimmer::facets {
@@ -19,12 +22,15 @@ namespace glimmer::facets {
 namespace {
 
 // What the CPU computed for the frame the `reference` method renders next: per pixel, one RGBA32F layer per light
-// (rgb D_est, a 1 where evaluated). Shared between renderReference() and the method's GPU resources.
+// (rgb D_est, a 1 where evaluated), then optionally a layer of environment glints (rgb radiance to add). Shared
+// between renderReference(), the method's GPU resources and its pass.
 struct ReferenceFrameData {
     std::mutex mutex;
     int width = 0, height = 0, layers = 0;
-    std::vector<float> rgba;   // layer-major, rows bottom-up
+    int environmentLayer = -1;   // >= 0: the layer the environment pass adds
+    std::vector<float> rgba;     // layer-major, rows bottom-up
     uint64_t version = 0;
+    GLuint texture = 0;          // the texture the resources last uploaded (owned by them)
 };
 
 ReferenceFrameData& frameData() {
@@ -53,12 +59,53 @@ public:
                 glClearTexImage(id, 0, GL_RGBA, GL_FLOAT, zero);
             }
         }
+        data.texture = texture_.id();
         glBindTextureUnit(UNIT_METHOD_FIRST, texture_.id());
+    }
+    ~ReferenceResources() override {
+        ReferenceFrameData& data = frameData();
+        std::lock_guard<std::mutex> lock(data.mutex);
+        if (data.texture == texture_.id()) data.texture = 0;
     }
 
 private:
     gl::Texture texture_;
     uint64_t uploaded_ = ~uint64_t(0);
+};
+
+// Adds the environment layer to the HDR radiance (frame.blendWeight: a running mean in accumulating IBL modes).
+class EnvironmentGlintPass : public MethodPass {
+public:
+    explicit EnvironmentGlintPass(const std::filesystem::path& root)
+        : program_(root, {"reference_environment",
+                          {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                           {GL_FRAGMENT_SHADER, "glints/reference/reference_environment.frag"}}}) {}
+    const char* name() const override { return "reference_environment_glints"; }
+    std::vector<gl::Program*> programs() override { return {&program_}; }
+    bool runs(const MethodPassFrame& frame) const override {
+        ReferenceFrameData& data = frameData();
+        std::lock_guard<std::mutex> lock(data.mutex);
+        return frame.debugView == 0 && data.environmentLayer >= 0 && data.texture != 0;
+    }
+    void execute(const MethodPassFrame& frame) override {
+        ReferenceFrameData& data = frameData();
+        int layer;
+        {
+            std::lock_guard<std::mutex> lock(data.mutex);
+            layer = data.environmentLayer;
+            glBindTextureUnit(0, data.texture);
+        }
+        program_.use();
+        glProgramUniform1i(program_.id(), 0, layer);
+        glBindVertexArray(frame.emptyVao);
+        gl::PipelineState state = gl::fullscreenState(frame.hdrFramebuffer, frame.width, frame.height);
+        state.blend = {true, -1, GL_CONSTANT_ALPHA, GL_ONE, GL_ZERO, GL_ONE, {0.0f, 0.0f, 0.0f, frame.blendWeight}};
+        state.apply();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+private:
+    gl::Program program_;
 };
 
 GlintMethod referenceMethod() {
@@ -73,8 +120,18 @@ GlintMethod referenceMethod() {
                          "pixel filter over the UV footprint: the parallelogram (box) or a Gaussian of its second moments",
                          {"box", "gaussian"}},
                         {"seed", 0.0f, 0.0f, 1e6f, "realization (material i uses seed x 2^20 + i)", {}, true},
-                        {"threads", 0.0f, 0.0f, 256.0f, "CPU threads (0 = every hardware thread)", {}, true}}};
+                        {"threads", 0.0f, 0.0f, 256.0f, "CPU threads (0 = every hardware thread)", {}, true},
+                        {"env_facet_samples", 4.0f, 1.0f, 64.0f,
+                         "environment: half vectors per facet inside its lobe (stratified Monte Carlo over the map)", {},
+                         true},
+                        {"env_samples", 64.0f, 1.0f, 4096.0f,
+                         "environment: samples of the smooth lobe subtracted (the IBL mode already shades it)", {}, true}}};
     method.createResources = [] { return std::make_unique<ReferenceResources>(); };
+    method.createPasses = [](const std::filesystem::path& root) {
+        MethodPassList passes;
+        passes.push_back(std::make_unique<EnvironmentGlintPass>(root));
+        return passes;
+    };
     return method;
 }
 
@@ -114,7 +171,8 @@ SurfaceImage captureSurface(OffscreenSession& session, const RenderRequest& requ
     const std::vector<float> normal = renderAov(session, r, "normal"), tangent = renderAov(session, r, "tangent"),
                              uv = renderAov(session, r, "uv"), duvdx = renderAov(session, r, "duvdx"),
                              duvdy = renderAov(session, r, "duvdy"), depth = renderAov(session, r, "depth"),
-                             material = renderAov(session, r, "material");
+                             material = renderAov(session, r, "material"), albedo = renderAov(session, r, "albedo"),
+                             ao = renderAov(session, r, "ao");
     const Camera& camera = request.cameraOverride ? *request.cameraOverride : session.scene().camera(request.camera);
     SurfaceImage surface;
     surface.width = request.width;
@@ -137,6 +195,9 @@ SurfaceImage captureSurface(OffscreenSession& session, const RenderRequest& requ
             p.footprint.duvdx = {duvdx[c], duvdx[c + 1]};
             p.footprint.duvdy = {duvdy[c], duvdy[c + 1]};
             p.material = int(std::lround(material[c + 2]));
+            p.metallic = material[c + 1];
+            p.baseColor = {albedo[c], albedo[c + 1], albedo[c + 2]};
+            p.occlusion = ao[c];
         }
     return surface;
 }
@@ -153,12 +214,35 @@ RenderResult renderReference(OffscreenSession& session, const RenderRequest& req
     ReferenceImage image = evaluateLights(surface, scene.materials, scene.lights, options);
     log::info("reference: ", image.width, "x", image.height, ", ", image.lights, " light(s), ", image.threads,
               " thread(s): ", image.seconds, " s, ", image.facetsTested, " facets tested");
+    // The environment (final image only): the facets' reflection of the map the renderer uses.
+    std::vector<glm::vec3> environment;
+    double environmentSeconds = 0.0;
+    session.context().makeCurrent();
+    const Environment& env = session.renderer().environment();
+    if (request.settings.debugView == 0 && env.enabled()) {
+        envref::CubeImage cube;
+        cube.size = Environment::kFaceSize;
+        cube.rgba.resize(size_t(6) * cube.size * cube.size * 4);
+        glGetTextureImage(env.sourceCube(), 0, GL_RGBA, GL_FLOAT, GLsizei(cube.rgba.size() * sizeof(float)), cube.rgba.data());
+        const bool procedural = env.stats().value("kind", std::string()) == "procedural";
+        EnvironmentMap map(std::move(cube), request.settings.common_("env.intensity"),
+                           procedural ? 0.0 : request.settings.common_("env.rotation"));
+        const ParamValues& values = request.settings.methodValues(kReferenceMethodId);
+        EnvironmentOptions environmentOptions;
+        for (const ParamSpec& spec : findGlintMethod(kReferenceMethodId).params) {
+            if (spec.name == "env_facet_samples") environmentOptions.facetSamples = int(paramOr(values, spec));
+            if (spec.name == "env_samples") environmentOptions.smoothSamples = int(paramOr(values, spec));
+        }
+        environment = environmentGlints(surface, scene.materials, map, options, environmentOptions, &environmentSeconds);
+        log::info("reference: environment glints ", environmentSeconds, " s");
+    }
     {
         ReferenceFrameData& data = frameData();
         std::lock_guard<std::mutex> lock(data.mutex);
         data.width = image.width;
         data.height = image.height;
-        data.layers = std::max(image.lights, 1);
+        data.layers = std::max(image.lights + (environment.empty() ? 0 : 1), 1);
+        data.environmentLayer = environment.empty() ? -1 : image.lights;
         data.rgba.assign(size_t(data.width) * data.height * data.layers * 4, 0.0f);
         const size_t pixels = size_t(data.width) * data.height;
         for (int k = 0; k < image.lights; ++k)
@@ -168,6 +252,14 @@ RenderResult renderReference(OffscreenSession& session, const RenderRequest& req
                 out[0] = d.x;
                 out[1] = d.y;
                 out[2] = d.z;
+                out[3] = image.glinty[p] ? 1.0f : 0.0f;
+            }
+        if (!environment.empty())
+            for (size_t p = 0; p < pixels; ++p) {
+                float* out = &data.rgba[(size_t(image.lights) * pixels + p) * 4];
+                out[0] = environment[p].x;
+                out[1] = environment[p].y;
+                out[2] = environment[p].z;
                 out[3] = image.glinty[p] ? 1.0f : 0.0f;
             }
         ++data.version;
@@ -180,6 +272,7 @@ RenderResult renderReference(OffscreenSession& session, const RenderRequest& req
                                  {"threads", image.threads},
                                  {"lights", image.lights},
                                  {"facets_tested", image.facetsTested},
+                                 {"environment_seconds", environmentSeconds},
                                  {"lobe", options.lobe == Lobe::Cone ? "cone" : "gaussian"},
                                  {"footprint", options.filter == FootprintFilter::Box ? "box" : "gaussian"},
                                  {"seed", options.seed}};
@@ -189,14 +282,13 @@ RenderResult renderReference(OffscreenSession& session, const RenderRequest& req
 std::string referenceCaption(const Scene& scene, const RenderSettings& settings) {
     registerReferenceMethod();
     const ReferenceOptions options = referenceOptions(settings);
-    std::string text = std::string(options.lobe == Lobe::Cone ? "cone" : "gaussian lobe") + ", " +
-                       (options.filter == FootprintFilter::Box ? "box" : "gaussian") + " footprint, seed " +
-                       std::to_string(options.seed);
+    // Compact (a 256-pixel tile holds 32 characters of the caption font): lobe/footprint, seed, the material.
+    std::string text = std::string(options.lobe == Lobe::Cone ? "cone" : "gauss") + "/" +
+                       (options.filter == FootprintFilter::Box ? "box" : "gauss") + " s" + std::to_string(options.seed);
     for (const Material& m : scene.materials)
         if (m.glinty) {
-            char material[96];
-            std::snprintf(material, sizeof material, "; %.3g /m2, gamma %.3g", double(m.glint.density),
-                          double(m.glint.angularSize));
+            char material[64];
+            std::snprintf(material, sizeof material, " %.2g/m2 g%.3g", double(m.glint.density), double(m.glint.angularSize));
             text += material;
             break;
         }
