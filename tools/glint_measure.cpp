@@ -25,6 +25,7 @@
 #include "core/log.h"
 #include "glints/methods.h"
 #include "glints/user_methods.h"
+#include "reference/discrete_facets/method_statistics.h"
 #include "reference/discrete_facets/reference_render.h"
 #include "render/aov.h"
 #include "render/offscreen.h"
@@ -67,7 +68,6 @@ struct Options {
     bool lifespan = false;
     std::vector<std::string> sets, referenceSets;
     std::string json;
-    int threads = 0;
 };
 
 // The materials measured. "oat" (one factor at a time around GGX, alpha 0.3): density x gamma crossed, then each
@@ -89,12 +89,6 @@ std::vector<Material4> materials(const Options& o) {
     return out;
 }
 
-std::vector<float> firstChannel(const RenderResult& r) {
-    std::vector<float> out(size_t(r.width) * size_t(r.height));
-    for (size_t i = 0; i < out.size(); ++i) out[i] = r.hdr[4 * i];
-    return out;
-}
-
 RenderRequest configRequest(const Options& o, const std::string& scene, const Material4& m) {
     RenderRequest r;
     r.scene = scene;
@@ -112,98 +106,6 @@ RenderRequest configRequest(const Options& o, const std::string& scene, const Ma
     std::snprintf(text, sizeof text, "material.glint_angular_size=%.9g", m.gamma);
     r.settings.apply(text);
     return r;
-}
-
-// The glint AOV of `method` (the reference counted on the CPU from `surface`) and smooth's.
-struct Frame {
-    std::vector<float> d, smooth;
-    std::vector<bool> inside;
-};
-
-Frame referenceFrame(OffscreenSession& session, const facets::SurfaceImage& surface, const RenderRequest& request) {
-    RenderRequest smooth = request;
-    smooth.settings.method = "smooth";
-    Frame f;
-    f.smooth = firstChannel(session.render(smooth));   // also leaves the request's materials and lights in the scene
-    facets::ReferenceOptions options = facets::referenceOptions(request.settings);
-    options.maxLights = 1;
-    options.progress = false;
-    facets::ReferenceImage image = facets::evaluateLights(surface, session.scene().materials, session.scene().lights, options);
-    f.d.assign(f.smooth.size(), 0.0f);
-    f.inside = highlightMask(f.smooth);
-    for (size_t i = 0; i < f.d.size(); ++i) {
-        if (image.lights == 0) break;
-        glm::vec3 d = image.d[i * size_t(image.lights)];
-        float cpuSmooth = image.smoothD[i * size_t(image.lights)];
-        // The CPU normalized to its own D(h) (rebuilt from the AOVs); expressed over the GPU's smooth D so every
-        // column divides by the same image.
-        float ratio = cpuSmooth > 0.0f ? (d.x + d.y + d.z) / (3.0f * cpuSmooth) : 0.0f;
-        f.d[i] = ratio * f.smooth[i];
-        f.inside[i] = f.inside[i] && image.glinty[i];
-    }
-    return f;
-}
-
-Frame methodFrame(OffscreenSession& session, const std::string& method, const RenderRequest& request, const Frame& ref) {
-    RenderRequest r = request;
-    r.settings.method = method;
-    RenderResult result = session.render(r);
-    if (result.stats["counts"]["non_finite_values"].get<size_t>() != 0)
-        log::warn("glint_measure: ", method, " wrote non-finite values");
-    Frame f = ref;
-    f.d = firstChannel(result);
-    return f;
-}
-
-const char* verdict(const BlockStats& m, const BlockStats& ref) {
-    bool cv = ref.cv > 0 ? (m.cv / ref.cv <= 1.5 && m.cv / ref.cv >= 1 / 1.5) : m.cv < 0.05;
-    bool p = ref.p999OverMean > 0 ? (m.p999OverMean / ref.p999OverMean <= 1.5 && m.p999OverMean / ref.p999OverMean >= 1 / 1.5) : true;
-    bool dark = std::abs(m.darkFraction - ref.darkFraction) <= 0.1;
-    bool mean = std::abs(m.mean / ref.mean - 1.0) <= 0.05;
-    return cv && p && dark && mean ? "yes" : "no";
-}
-
-double pearson(const std::vector<float>& a, const std::vector<float>& b, const std::vector<bool>& mask) {
-    double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        if (!mask[i]) continue;
-        n += 1, sa += a[i], sb += b[i], saa += double(a[i]) * a[i], sbb += double(b[i]) * b[i], sab += double(a[i]) * b[i];
-    }
-    if (n < 2) return 0.0;
-    double va = saa / n - (sa / n) * (sa / n), vb = sbb / n - (sb / n) * (sb / n);
-    return va > 0 && vb > 0 ? (sab / n - (sa / n) * (sb / n)) / std::sqrt(va * vb) : 0.0;
-}
-
-std::vector<float> ratios(const Frame& f) {
-    std::vector<float> r(f.d.size(), 0.0f);
-    for (size_t i = 0; i < r.size(); ++i) r[i] = f.inside[i] && f.smooth[i] > 0 ? f.d[i] / f.smooth[i] : 0.0f;
-    return r;
-}
-
-// The light-turn angle (degrees) at which the per-pixel correlation of D / D_smooth halves.
-double lifespan(OffscreenSession& session, const facets::SurfaceImage& surface, const RenderRequest& base,
-                const std::string& method) {
-    auto frameAt = [&](double degrees) {
-        RenderRequest r = base;
-        char text[64];
-        std::snprintf(text, sizeof text, "light.turn=%.9g", degrees);
-        r.settings.apply(text);
-        Frame ref = referenceFrame(session, surface, r);
-        return method == facets::kReferenceMethodId ? ref : methodFrame(session, method, r, ref);
-    };
-    Frame f0 = frameAt(0.0);
-    std::vector<float> r0 = ratios(f0);
-    double previousAngle = 0.0, previous = 1.0;
-    for (double degrees = 0.02; degrees <= 20.0; degrees *= 1.5) {
-        Frame f = frameAt(degrees);
-        std::vector<bool> both(f.inside.size());
-        for (size_t i = 0; i < both.size(); ++i) both[i] = f.inside[i] && f0.inside[i];
-        double rho = pearson(r0, ratios(f), both);
-        if (rho <= 0.5) return previousAngle + (previous - 0.5) / (previous - rho) * (degrees - previousAngle);
-        previousAngle = degrees;
-        previous = rho;
-    }
-    return INFINITY;
 }
 
 int run(int argc, char** argv) {
@@ -249,21 +151,23 @@ int run(int argc, char** argv) {
         facets::SurfaceImage surface = facets::captureSurface(session, first);
         for (const Material4& m : materials(o)) {
             RenderRequest request = configRequest(o, scene, m);
-            Frame ref = referenceFrame(session, surface, request);
-            std::vector<std::pair<std::string, Frame>> frames = {{facets::kReferenceMethodId, ref}};
-            for (const std::string& method : o.methods) frames.push_back({method, methodFrame(session, method, request, ref)});
+            facets::GlintFrame ref = facets::referenceGlintFrame(session, surface, request);
+            std::vector<std::pair<std::string, facets::GlintFrame>> frames = {{facets::kReferenceMethodId, ref}};
+            for (const std::string& method : o.methods)
+                frames.push_back({method, facets::methodGlintFrame(session, method, request, ref)});
             for (int block : {1, 4, 16}) {
                 BlockStats r = blockStats(ref.d, ref.smooth, ref.inside, o.size, o.size, block);
                 for (const auto& [method, f] : frames) {
                     BlockStats s = blockStats(f.d, f.smooth, f.inside, o.size, o.size, block);
                     bool isRef = method == facets::kReferenceMethodId;
+                    facets::TargetCheck target = facets::checkTarget(s, r);
                     std::printf("| %s | %s | %.2g | %.0e | %.3g | %s | %dx%d | %.3f | %.3f | %.2f | %.3f | %s | %s | %s | %s |\n",
                                 scene.c_str(), m.ndf.c_str(), m.alpha, m.density, m.gamma, method.c_str(), block, block,
                                 s.mean, s.cv, s.p999OverMean, s.darkFraction,
                                 isRef ? "-" : (r.cv > 0 ? std::to_string(s.cv / r.cv).substr(0, 5).c_str() : "-"),
                                 isRef ? "-" : (r.p999OverMean > 0 ? std::to_string(s.p999OverMean / r.p999OverMean).substr(0, 5).c_str() : "-"),
                                 isRef ? "-" : std::to_string(s.darkFraction - r.darkFraction).substr(0, 6).c_str(),
-                                isRef || block != 4 ? "" : verdict(s, r));
+                                isRef || block != 4 ? "" : (target.all() ? "yes" : "no"));
                     if (json.is_open())
                         json << "{\"scene\":\"" << scene << "\",\"ndf\":\"" << m.ndf << "\",\"alpha\":" << m.alpha
                              << ",\"density\":" << m.density << ",\"gamma\":" << m.gamma << ",\"method\":\"" << method
@@ -281,7 +185,7 @@ int run(int argc, char** argv) {
                 std::vector<std::string> all = {facets::kReferenceMethodId};
                 all.insert(all.end(), o.methods.begin(), o.methods.end());
                 for (const std::string& method : all) {
-                    double deg = lifespan(session, surface, base, method);
+                    double deg = facets::lifespanDegrees(session, surface, base, method);
                     std::printf(" %s %.3g;", method.c_str(), deg);
                     if (json.is_open())
                         json << "{\"scene\":\"" << scene << "\",\"gamma\":" << gamma << ",\"method\":\"" << method

@@ -1,5 +1,6 @@
 // glimmer check-method: the interface rules a glint method is held to (glints/method_checks.h), as a table.
 // Exit 0 when every rule passes, 1 naming the failed rules.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "glints/method_checks.h"
 #include "glints/user_methods.h"
 #include "platform/context.h"
+#include "reference/discrete_facets/material_check.h"
 
 namespace glimmer {
 
@@ -45,7 +47,24 @@ int runCheckCommand(const std::vector<std::string>& argList) {
     std::string id = resolveGlintMethod(isFile ? "file:" + target : target, "check-method");
     options.progress = [](const std::string& line) { std::fprintf(stderr, "glimmer: check-method: %s\n", line.c_str()); };
     checks::CheckReport report = checks::checkMethod(id, options);
+    std::string materialTable;
+    if (options.rules.empty() ||
+        std::find(options.rules.begin(), options.rules.end(), "physical-material") != options.rules.end()) {
+        facets::MaterialCheckOptions material;
+        material.size = options.size;
+        material.backend = options.backend;
+        material.shaderRoot = options.shaderRoot;
+        material.progress = options.progress;
+        std::vector<facets::MaterialCheckRow> rows = facets::checkPhysicalMaterial(id, material);
+        size_t within = 0;
+        for (const facets::MaterialCheckRow& row : rows) within += row.target.all();
+        checks::RuleResult rule{"physical-material", "info", "", "4x4 blocks vs the discrete-facet reference: CV, p99.9/mean within 1.5x, dark within 0.1, mean within 5 %"};
+        rule.measured = std::to_string(within) + " of " + std::to_string(rows.size()) + " views within the target (table below)";
+        report.results.push_back(rule);
+        materialTable = facets::formatMaterialTable(rows);
+    }
     std::fputs(checks::formatTable(report).c_str(), stdout);
+    if (!materialTable.empty()) std::printf("\nphysical-material (issue 36, docs/glint_statistics.md):\n%s", materialTable.c_str());
     std::fflush(stdout);
     if (report.passed()) return 0;
     std::string failed;
