@@ -196,6 +196,21 @@ TEST(DiscreteFacets, RealizationIsDeterministicAndQueryIndependent) {
         nonZero += x.ratio > 0.0;
     }
     EXPECT_GT(nonZero, 10);   // the comparison saw facets
+    // Counting whole boxes inside footprint and cone (dense footprints) gives the count of every facet enumerated.
+    FacetMaterial dense = m;
+    dense.densityPerUv = 1e11;
+    FacetEstimator denseEstimator(dense);
+    long fastTested = 0, allTested = 0;
+    for (int i = 0; i < 6; ++i) {
+        PixelFootprint fp = squarePixel({0.2, 0.1}, 0.004, i, 2 * i);
+        glm::dvec3 h = halfVector(0.02 + 0.05 * i, 0.9 * i);
+        FacetEstimate fast = denseEstimator.estimate(fp, h), all = denseEstimator.estimate(fp, h, false);
+        EXPECT_GT(all.ratio * all.lambda, 500.0);
+        EXPECT_EQ(std::round(fast.ratio * fast.lambda), std::round(all.ratio * all.lambda)) << "footprint " << i;
+        fastTested += fast.facetsTested;
+        allTested += all.facetsTested;
+    }
+    EXPECT_LT(fastTested, allTested);   // whole boxes were counted
     m.seed = 4;
     FacetRealization other(m);
     std::vector<std::tuple<double, double, double, double, double>> otherWhole;

@@ -142,8 +142,8 @@ int run(int argc, char** argv) {
     std::ofstream json;
     if (!o.json.empty()) json.open(o.json);
 
-    std::printf("| scene | NDF | alpha | density /m2 | gamma | method | block | mean | CV | p99.9 / mean | dark | CV / ref | "
-                "p99.9 / ref | dark - ref | 4x4 target |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| scene | NDF | alpha | density /m2 | gamma | facets per block | method | block | mean | CV | p99.9 / mean | dark | "
+                "CV / ref | p99.9 / ref | dark - ref | 4x4 target |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const std::string& scene : o.scenes) {
         RenderRequest first = configRequest(o, scene, {"ggx", 0.3, 1e6, 0.015});
         first.settings.method = "smooth";
@@ -157,12 +157,13 @@ int run(int argc, char** argv) {
                 frames.push_back({method, facets::methodGlintFrame(session, method, request, ref)});
             for (int block : {1, 4, 16}) {
                 BlockStats r = blockStats(ref.d, ref.smooth, ref.inside, o.size, o.size, block);
+                const double lambdaBlock = facets::meanBlockLambda(ref, block);
                 for (const auto& [method, f] : frames) {
                     BlockStats s = blockStats(f.d, f.smooth, f.inside, o.size, o.size, block);
                     bool isRef = method == facets::kReferenceMethodId;
                     facets::TargetCheck target = facets::checkTarget(s, r);
-                    std::printf("| %s | %s | %.2g | %.0e | %.3g | %s | %dx%d | %.3f | %.3f | %.2f | %.3f | %s | %s | %s | %s |\n",
-                                scene.c_str(), m.ndf.c_str(), m.alpha, m.density, m.gamma, method.c_str(), block, block,
+                    std::printf("| %s | %s | %.2g | %.0e | %.3g | %.3g | %s | %dx%d | %.3f | %.3f | %.2f | %.3f | %s | %s | %s | %s |\n",
+                                scene.c_str(), m.ndf.c_str(), m.alpha, m.density, m.gamma, lambdaBlock, method.c_str(), block, block,
                                 s.mean, s.cv, s.p999OverMean, s.darkFraction,
                                 isRef ? "-" : (r.cv > 0 ? std::to_string(s.cv / r.cv).substr(0, 5).c_str() : "-"),
                                 isRef ? "-" : (r.p999OverMean > 0 ? std::to_string(s.p999OverMean / r.p999OverMean).substr(0, 5).c_str() : "-"),
@@ -171,7 +172,7 @@ int run(int argc, char** argv) {
                     if (json.is_open())
                         json << "{\"scene\":\"" << scene << "\",\"ndf\":\"" << m.ndf << "\",\"alpha\":" << m.alpha
                              << ",\"density\":" << m.density << ",\"gamma\":" << m.gamma << ",\"method\":\"" << method
-                             << "\",\"block\":" << block << ",\"blocks\":" << s.blocks << ",\"mean\":" << s.mean
+                             << "\",\"block\":" << block << ",\"lambda\":" << lambdaBlock << ",\"blocks\":" << s.blocks << ",\"mean\":" << s.mean
                              << ",\"cv\":" << s.cv << ",\"p999\":" << s.p999OverMean << ",\"dark\":" << s.darkFraction
                              << "}\n";
                 }

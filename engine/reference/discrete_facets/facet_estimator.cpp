@@ -184,7 +184,7 @@ bool FacetEstimator::footprintBounds(const PixelFootprint& fp, glm::dvec2& lo, g
     return std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y);
 }
 
-FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec3& h) const {
+FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec3& h, bool wholeBoxes) const {
     FacetEstimate result;
     if (h.z <= 0.0) return result;
     const double rho = material().densityPerUv;
@@ -198,13 +198,40 @@ FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec
     region.uvMax = footprint.hi;
     glm::dvec3 sum(0.0);
     long tested = 0;
-    realization_.forEach(region, [&](const Facet& f) {
+    auto visit = [&](const Facet& f) {
         ++tested;
         double w = footprint.weight(f.uv);
         if (w <= 0.0) return;
         double k = lobe.weight(f.m);
         if (k > 0.0) sum += (w * k) * f.color;
-    });
+    };
+    const FacetMaterial& mat = material();
+    if (wholeBoxes && footprint.box && lobe.cone && mat.anisotropy == 1.0 && mat.colorVariation == 0.0) {
+        // Every facet of a box that lies inside both the parallelogram and the cone has weight 1 / A, lobe 1 and
+        // the material's colour: the box's exact facet count is added without generating them (dense pixels
+        // hold thousands of reflecting facets). The parallelogram is convex, so its 4 UV corners decide; over a
+        // box of normals narrower than pi in azimuth, the angle to h is largest at a corner (cos of the angle is
+        // a sinusoid in the polar angle and in the azimuth, without an interior minimum there).
+        auto inside = [&](const double* uvLo, const double* uvHi, const double* u1Lo, const double* u1Hi,
+                          const double* u2Lo, const double* u2Hi) {
+            if (*u2Hi - *u2Lo >= 0.5) return false;
+            for (int c = 0; c < 4; ++c) {
+                glm::dvec2 uv(c & 1 ? uvHi[0] : uvLo[0], c & 2 ? uvHi[1] : uvLo[1]);
+                double dx = uv.x - footprint.centre.x, dy = uv.y - footprint.centre.y;
+                double fs = footprint.m00 * dx + footprint.m01 * dy, ft = footprint.m10 * dx + footprint.m11 * dy;
+                if (!(std::abs(fs) <= 0.5 && std::abs(ft) <= 0.5)) return false;
+            }
+            for (int c = 0; c < 4; ++c) {
+                glm::dvec3 m = realization_.normalFromUniforms(c & 1 ? *u1Hi : *u1Lo, c & 2 ? *u2Hi : *u2Lo);
+                if (!(glm::dot(m, h) >= lobe.cosGamma)) return false;
+            }
+            return true;
+        };
+        const glm::dvec3 whole = footprint.scale * mat.color;
+        realization_.forEachOrCount(region, visit, inside, [&](uint32_t n) { sum += double(n) * whole; });
+    } else {
+        realization_.forEach(region, visit);
+    }
     result.d = sum * (d / (rho * p));
     result.ratio = (result.d.x + result.d.y + result.d.z) / (3.0 * d);
     result.lambda = rho * footprintArea(fp) * p;

@@ -111,7 +111,10 @@ public:
     // D_est(h) at one pixel; `densityScale` multiplies rho in the normalization (a density mask read at the
     // pixel, as the methods read it; 1 = none). Every facet of the footprint's region whose lobe can reach h is
     // visited and weighed exactly. A degenerate footprint (zero area) or h below the surface gives 0.
-    FacetEstimate estimate(const PixelFootprint& fp, const glm::dvec3& h) const;
+    // With the box footprint and the isotropic cone (and no colour variation), boxes of facets that lie wholly
+    // inside footprint and cone add their exact count without generating their facets (wholeBoxes = false
+    // enumerates every facet: the tests check that both give the same count).
+    FacetEstimate estimate(const PixelFootprint& fp, const glm::dvec3& h, bool wholeBoxes = true) const;
 
     // Calls visit(facet, weight) for every facet of the footprint (all normals): environment lighting.
     template <class Visit> void forEachFootprintFacet(const PixelFootprint& fp, Visit&& visit) const;

@@ -65,6 +65,7 @@ ReferenceImage evaluateLights(const SurfaceImage& surface, const std::vector<Mat
     const size_t pixels = size_t(surface.width) * size_t(surface.height);
     image.d.assign(pixels * size_t(image.lights), glm::vec3(0.0f));
     image.smoothD.assign(pixels * size_t(image.lights), 0.0f);
+    image.lambda.assign(pixels * size_t(image.lights), 0.0f);
     image.glinty.assign(pixels, 0);
     image.threads = workerCount(options.threads);
 
@@ -104,6 +105,7 @@ ReferenceImage evaluateLights(const SurfaceImage& surface, const std::vector<Mat
                 FacetEstimate e = estimator.estimate(px.footprint, h);
                 image.d[p * size_t(image.lights) + size_t(k)] = glm::vec3(e.d);
                 image.smoothD[p * size_t(image.lights) + size_t(k)] = float(estimator.smoothD(h));
+                image.lambda[p * size_t(image.lights) + size_t(k)] = float(e.lambda);
                 rowTested += e.facetsTested;
             }
         }

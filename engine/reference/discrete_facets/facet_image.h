@@ -50,6 +50,7 @@ struct ReferenceImage {
     int width = 0, height = 0, lights = 0;
     std::vector<glm::vec3> d;          // [pixel x lights + light]: D_est per channel (0 where not glinty or unlit)
     std::vector<float> smoothD;        // [pixel x lights + light]: the smooth D(h) at the same h
+    std::vector<float> lambda;         // [pixel x lights + light]: expected reflecting facets rho A P(h)
     std::vector<uint8_t> glinty;       // per pixel: a glinty material was evaluated there
     double seconds = 0.0;              // wall time of the evaluation
     double facetsTested = 0.0;         // facets whose lobe weight was evaluated, all pixels and lights

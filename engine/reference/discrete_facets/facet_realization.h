@@ -98,6 +98,13 @@ public:
     // region's boundary is included). Facet colours are filled in. Thread-safe (no state changes).
     template <class Visit> void forEach(const FacetRegion& region, Visit&& visit) const;
 
+    // forEach with whole boxes: `inner(uvLo, uvHi, u1Lo, u1Hi, u2Lo, u2Hi)` is asked about each box met (UV in
+    // UV units; u1, u2 the normal's uniforms); when it returns true, the box's facets are not generated and
+    // `count(n)` receives their number instead (exact: the box holds exactly n facets; for callers whose
+    // weights are equal over such a box, e.g. a box footprint and a cone lobe that contain it entirely).
+    template <class Visit, class Inner, class Count>
+    void forEachOrCount(const FacetRegion& region, Visit&& visit, Inner&& inner, Count&& count) const;
+
     // Visits every facet of one tile (tests).
     template <class Visit> void forEachInTile(int64_t tx, int64_t ty, Visit&& visit) const;
 
@@ -113,7 +120,14 @@ private:
         double lo[4], hi[4];   // box in tile-normalized (x, y, u1, u2)
     };
     template <class Visit> void walk(int64_t tx, int64_t ty, const double qlo[4], const double qhi[4],
-                                     Visit&& visit) const;
+                                     Visit&& visit) const {
+        walk(tx, ty, qlo, qhi, visit, [](const double*, const double*, const double*, const double*, const double*,
+                                         const double*) { return false; },
+             [](uint32_t) {});
+    }
+    template <class Visit, class Inner, class Count>
+    void walk(int64_t tx, int64_t ty, const double qlo[4], const double qhi[4], Visit&& visit, Inner&& inner,
+              Count&& count) const;
     uint32_t splitLeft(uint64_t key, uint32_t n) const;   // Binomial(n, 1/2)
     void leafPoint(const Node& node, uint32_t index, double p[4], double& hue) const;
     Facet makeFacet(int64_t tx, int64_t ty, const double p[4], double hue) const;
@@ -146,13 +160,39 @@ template <class Visit> void FacetRealization::forEach(const FacetRegion& region,
         }
 }
 
+template <class Visit, class Inner, class Count>
+void FacetRealization::forEachOrCount(const FacetRegion& region, Visit&& visit, Inner&& inner, Count&& count) const {
+    const double side = tileSide_;
+    int64_t tx0 = int64_t(std::floor(region.uvMin.x / side)), tx1 = int64_t(std::floor(region.uvMax.x / side));
+    int64_t ty0 = int64_t(std::floor(region.uvMin.y / side)), ty1 = int64_t(std::floor(region.uvMax.y / side));
+    for (int64_t ty = ty0; ty <= ty1; ++ty)
+        for (int64_t tx = tx0; tx <= tx1; ++tx) {
+            double qlo[4] = {region.uvMin.x / side - double(tx), region.uvMin.y / side - double(ty), region.u1Min, 0.0};
+            double qhi[4] = {region.uvMax.x / side - double(tx), region.uvMax.y / side - double(ty), region.u1Max, 0.0};
+            // A box inside the query is counted by the caller's test alone: the two azimuth ranges never both
+            // hold a box (they are disjoint), so nothing is counted twice.
+            auto innerUv = [&](const double* lo, const double* hi, const double* u1lo, const double* u1hi,
+                               const double* u2lo, const double* u2hi) {
+                double uvLo[2] = {(double(tx) + lo[0]) * side, (double(ty) + lo[1]) * side};
+                double uvHi[2] = {(double(tx) + hi[0]) * side, (double(ty) + hi[1]) * side};
+                return inner(uvLo, uvHi, u1lo, u1hi, u2lo, u2hi);
+            };
+            for (int r = 0; r < region.azimuthRanges; ++r) {
+                qlo[3] = region.u2Min[size_t(r)];
+                qhi[3] = region.u2Max[size_t(r)];
+                walk(tx, ty, qlo, qhi, visit, innerUv, count);
+            }
+        }
+}
+
 template <class Visit> void FacetRealization::forEachInTile(int64_t tx, int64_t ty, Visit&& visit) const {
     const double qlo[4] = {0.0, 0.0, 0.0, 0.0}, qhi[4] = {1.0, 1.0, 1.0, 1.0};
     walk(tx, ty, qlo, qhi, visit);
 }
 
-template <class Visit> void FacetRealization::walk(int64_t tx, int64_t ty, const double qlo[4], const double qhi[4],
-                                                   Visit&& visit) const {
+template <class Visit, class Inner, class Count>
+void FacetRealization::walk(int64_t tx, int64_t ty, const double qlo[4], const double qhi[4], Visit&& visit,
+                            Inner&& inner, Count&& count) const {
     Node stack[160];
     int top = 0;
     Node root{tileKey(tx, ty), tileCount(tx, ty), 0, {0.0, 0.0, 0.0, 0.0}, {1.0, 1.0, 1.0, 1.0}};
@@ -164,6 +204,14 @@ template <class Visit> void FacetRealization::walk(int64_t tx, int64_t ty, const
         bool meets = true;
         for (int d = 0; d < 4; ++d) meets = meets && node.lo[d] <= qhi[d] && node.hi[d] >= qlo[d];
         if (!meets) continue;
+        // A box wholly inside the query box (every azimuth range but the one queried excludes it) whose facets
+        // the caller weighs equally: counted without generating them.
+        bool within = true;
+        for (int d = 0; d < 4; ++d) within = within && node.lo[d] >= qlo[d] && node.hi[d] <= qhi[d];
+        if (within && inner(&node.lo[0], &node.hi[0], &node.lo[2], &node.hi[2], &node.lo[3], &node.hi[3])) {
+            count(node.count);
+            continue;
+        }
         if (node.count <= kLeafFacets || node.depth >= 62) {
             // Each facet is tested against the query box itself (not only its leaf), so a facet is reported by
             // exactly the queries whose box holds it, once per query even when two azimuth ranges meet its leaf.

@@ -45,6 +45,7 @@ GlintFrame referenceGlintFrame(OffscreenSession& session, const SurfaceImage& su
     options.progress = false;
     ReferenceImage image = evaluateLights(surface, session.scene().materials, session.scene().lights, options);
     f.d.assign(f.smooth.size(), 0.0f);
+    f.lambda.assign(f.smooth.size(), 0.0f);
     f.inside = highlightMask(f.smooth);
     for (size_t i = 0; i < f.d.size(); ++i) {
         if (image.lights == 0) {
@@ -55,6 +56,7 @@ GlintFrame referenceGlintFrame(OffscreenSession& session, const SurfaceImage& su
         float cpuSmooth = image.smoothD[i * size_t(image.lights)];
         float ratio = cpuSmooth > 0.0f ? (d.x + d.y + d.z) / (3.0f * cpuSmooth) : 0.0f;
         f.d[i] = ratio * f.smooth[i];
+        f.lambda[i] = image.lambda[i * size_t(image.lights)];
         f.inside[i] = f.inside[i] && image.glinty[i] && cpuSmooth > 0.0f;
     }
     return f;
@@ -70,6 +72,29 @@ GlintFrame methodGlintFrame(OffscreenSession& session, const std::string& method
     GlintFrame f = reference;
     f.d = firstChannel(result);
     return f;
+}
+
+double meanBlockLambda(const GlintFrame& f, int block) {
+    double total = 0.0;
+    size_t blocks = 0;
+    for (int by = 0; by + block <= f.height; by += block)
+        for (int bx = 0; bx + block <= f.width; bx += block) {
+            double sum = 0.0;
+            bool whole = true;
+            for (int y = by; y < by + block && whole; ++y)
+                for (int x = bx; x < bx + block; ++x) {
+                    size_t i = size_t(y) * size_t(f.width) + size_t(x);
+                    if (!f.inside[i]) {
+                        whole = false;
+                        break;
+                    }
+                    sum += f.lambda[i];
+                }
+            if (!whole) continue;
+            total += sum;
+            ++blocks;
+        }
+    return blocks ? total / double(blocks) : 0.0;
 }
 
 TargetCheck checkTarget(const BlockStats& m, const BlockStats& ref) {

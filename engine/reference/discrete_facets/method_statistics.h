@@ -16,6 +16,7 @@ namespace glimmer::facets {
 // smooth D >= 0.1 of its peak, on a material the reference evaluates as glinty).
 struct GlintFrame {
     std::vector<float> d, smooth;
+    std::vector<float> lambda;   // the reference's expected reflecting facets per pixel
     std::vector<bool> inside;
     int width = 0, height = 0;
 };
@@ -24,6 +25,9 @@ struct GlintFrame {
 // and lights into the session's scene). D is expressed over the GPU's smooth D, so every method divides by the
 // same image.
 GlintFrame referenceGlintFrame(OffscreenSession& session, const SurfaceImage& surface, const RenderRequest& request);
+// The mean over the blocks blockStats measures of the reference's expected reflecting facets per block: the
+// axis on which the methods' agreement is stated (docs/glint_statistics.md).
+double meanBlockLambda(const GlintFrame& reference, int block);
 // `method`'s frame for the same request, measured over the reference frame's pixels.
 GlintFrame methodGlintFrame(OffscreenSession& session, const std::string& method, const RenderRequest& request,
                             const GlintFrame& reference);
