@@ -40,7 +40,15 @@ static GlintMethod deliot2023Method() {
               {"projected", "lobe"}},
              {"gate", 0.0f, 0.0f, 1.0f,
               "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
-              {"soft", "hard"}}},
+              {"soft", "hard"}},
+             // Issue 36's residual against the authors' randomized counts (docs/deliot2023.md): their normal variate
+             // is an inverse CDF (unbounded tails), and their NDF is clamped to 20 D(n); both kept as choices.
+             {"density_normal", 0.0f, 0.0f, 1.0f,
+              "normal variate of the density randomization: irwin_hall (4 uniforms, tails cut at 3.46 sigma) or "
+              "exact (inverse CDF, Giles' erfinv, as the authors' code)",
+              {"irwin_hall", "exact"}},
+             {"max_ratio", 0.0f, 0.0f, 1000.0f,
+              "clamp of D_P / D(n) (authors' code: 20, 'grazing angle extremities'); 0 = none"}},
             createDeliot2023Resources};
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
