@@ -20,15 +20,15 @@
 #include <string>
 #include <vector>
 
-#include "bench/sparkle_stats.h"
+#include "reference/discrete_facets/block_stats.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "glints/methods.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "reference/discrete_facets/method_statistics.h"
 #include "reference/discrete_facets/reference_render.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 using namespace glimmer;
 
@@ -156,10 +156,10 @@ int run(int argc, char** argv) {
             for (const std::string& method : o.methods)
                 frames.push_back({method, facets::methodGlintFrame(session, method, request, ref)});
             for (int block : {1, 4, 16}) {
-                BlockStats r = blockStats(ref.d, ref.smooth, ref.inside, o.size, o.size, block);
+                facets::BlockStats r = facets::blockStats(ref.d, ref.smooth, ref.inside, o.size, o.size, block);
                 const double lambdaBlock = facets::meanBlockLambda(ref, block);
                 for (const auto& [method, f] : frames) {
-                    BlockStats s = blockStats(f.d, f.smooth, f.inside, o.size, o.size, block);
+                    facets::BlockStats s = facets::blockStats(f.d, f.smooth, f.inside, o.size, o.size, block);
                     bool isRef = method == facets::kReferenceMethodId;
                     facets::TargetCheck target = facets::checkTarget(s, r);
                     std::printf("| %s | %s | %.2g | %.0e | %.3g | %.3g | %s | %dx%d | %.3f | %.3f | %.2f | %.3f | %s | %s | %s | %s |\n",

@@ -1,4 +1,4 @@
-// glimmer check-method: the interface rules a glint method is held to (glints/method_checks.h), as a table.
+// glimmer check-method: the interface rules a glint method is held to (checks/method_checks.h), as a table.
 // Exit 0 when every rule passes, 1 naming the failed rules.
 #include <algorithm>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include "app/commands.h"
 #include "core/cli.h"
 #include "core/error.h"
-#include "glints/method_checks.h"
-#include "glints/user_methods.h"
+#include "checks/method_checks.h"
+#include "glints/user/user_methods.h"
 #include "platform/context.h"
 #include "reference/discrete_facets/material_check.h"
 

@@ -13,10 +13,10 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "reference/discrete_facets/reference_render.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "render/settings.h"
 
 namespace glimmer {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "reference/discrete_facets/facet_image.h"
-#include "render/cube_texels.h"
+#include "environment/cube_texels.h"
 
 namespace glimmer::facets {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/sparkle_stats.h"
+#include "reference/discrete_facets/block_stats.h"
 #include "platform/context.h"
 #include "reference/discrete_facets/method_statistics.h"
 

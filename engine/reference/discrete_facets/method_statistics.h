@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/sparkle_stats.h"
+#include "reference/discrete_facets/block_stats.h"
 #include "reference/discrete_facets/facet_image.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::facets {
 

@@ -78,7 +78,7 @@ class EnvironmentGlintPass : public MethodPass {
 public:
     explicit EnvironmentGlintPass(const std::filesystem::path& root)
         : program_(root, {"reference_environment",
-                          {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                          {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
                            {GL_FRAGMENT_SHADER, "glints/reference/reference_environment.frag"}}}) {}
     const char* name() const override { return "reference_environment_glints"; }
     std::vector<gl::Program*> programs() override { return {&program_}; }

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "reference/discrete_facets/facet_image.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::facets {
 
