@@ -203,8 +203,13 @@ SurfaceImage captureSurface(OffscreenSession& session, const RenderRequest& requ
 }
 
 RenderResult renderReference(OffscreenSession& session, const RenderRequest& request) {
-    if (int(request.settings.common_("aa")) != 0)
-        throw UsageError("--method reference: needs aa=0 (it counts the facets of each pixel's own footprint once)");
+    // The facets are counted for the unjittered pixel footprint (the AOVs' frame 0): TAA may accumulate frames as
+    // long as the lighting pass shades glints at that footprint too (taa.stable_glints, the default); SSAA
+    // renders other pixels.
+    const int aa = int(request.settings.common_("aa"));
+    if (aa == 2 || (aa == 1 && request.settings.common_("taa.stable_glints") < 0.5f))
+        throw UsageError("--method reference: needs aa=off, or aa=taa with taa.stable_glints=1 (it counts the facets "
+                         "of each pixel's unjittered footprint)");
     if (request.renderScale != 1.0f)
         throw UsageError("--method reference: needs --render-scale 1 (the facets are counted per render pixel)");
     registerReferenceMethod();
