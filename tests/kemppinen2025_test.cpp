@@ -254,8 +254,10 @@ TEST(Kemppinen2025, ShaderMatchesCpuReference) {
     expectShaderMatchesCpu(rig, kemppinen({{"density", 1e2f}}, 0), 96, "ggx sparse");
     expectShaderMatchesCpu(rig, kemppinen({}, 1), 96, "beckmann default");
     expectShaderMatchesCpu(rig, kemppinen({{"density", 3e8f}, {"neighbors", 1.0f}}, 0), 96, "ggx k=16");
-    expectShaderMatchesCpu(rig, kemppinen({{"glint_anisotropy", 8.0f}, {"roughness_anisotropy", 3.0f}}, 1), 96,
-                           "beckmann anisotropic");
+    // At the plane's density itself (2e6 per UV area), as before issue 36 mapped the material to a tenth of it:
+    // the sparser, sharper anisotropic glints put more pixels in the float32 tails this comparison tolerates.
+    expectShaderMatchesCpu(rig, kemppinen({{"glint_anisotropy", 8.0f}, {"roughness_anisotropy", 3.0f}, {"density", 2e6f}}, 1),
+                           96, "beckmann anisotropic");
     expectShaderMatchesCpu(rig, kemppinen({{"color_variation", 1.0f}, {"micro_roughness", 0.03f}}, 0), 96,
                            "ggx coloured");
     expectShaderMatchesCpu(rig, kemppinen({{"triplanar", 1.0f}}, 0), 96, "ggx triplanar");

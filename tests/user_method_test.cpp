@@ -48,6 +48,7 @@ param: blend = smooth in {linear, smooth, cubic}: how cells blend
 converge:  log_density=40, blend=linear
 map: log_density = ln(density_per_uv) - steps^2/2
 map: roughness = 2 (angular_size)^2 alpha^-2
+map: steps = 3
 */
 float glintD() { return 1.0; }
 )";
@@ -74,7 +75,7 @@ TEST(UserMethodHeader, GoodHeaderGivesTheTableEntry) {
     EXPECT_EQ(m.convergence.at("log_density"), 40.0f);
     EXPECT_EQ(m.convergence.at("blend"), 0.0f);
     // map lines: the glint material's quantities, in the form --list-params prints.
-    ASSERT_EQ(m.materialMapping.size(), 2u);
+    ASSERT_EQ(m.materialMapping.size(), 3u);
     EXPECT_EQ(mappingFormula(m.materialMapping[0]), "log_density = ln(density_per_uv) - steps^2/2");
     EXPECT_TRUE(m.materialMapping[0].log);
     EXPECT_EQ(m.materialMapping[0].minusHalfSquareOf, "steps");
@@ -83,6 +84,12 @@ TEST(UserMethodHeader, GoodHeaderGivesTheTableEntry) {
     EXPECT_EQ(m.materialMapping[1].power, 2.0f);
     EXPECT_EQ(m.materialMapping[1].alphaPower, -2.0f);
     EXPECT_EQ(mappingFormula(m.materialMapping[1]), "roughness = 2 (angular_size)^2 alpha^-2");
+    // A number alone is a constant on every material (issue 36: switching a knob off), printed back as such.
+    EXPECT_EQ(m.materialMapping[2].power, 0.0f);
+    EXPECT_EQ(mappingFormula(m.materialMapping[2]), "steps = 3");
+    Material any;
+    any.glint.density = 0.0f;   // q^0 is 1 even for a zero quantity
+    EXPECT_EQ(mappedValue(m.materialMapping[2], any), 3.0f);
     // The same P_<NAME> block as the built-ins (outside the lighting pass P_ reads the shared values PS_).
     std::string glsl = methodParamsGlsl(m);
     EXPECT_NE(glsl.find("#define PS_LOG_DENSITY u_methodParams[0].x"), std::string::npos) << glsl;

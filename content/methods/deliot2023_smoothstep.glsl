@@ -11,9 +11,13 @@ param: screen_space_scale = 1.5 in [0.1, 10]: grid cell size in pixels across th
 param: normalization = vertex in {vertex, footprint}: each vertex's count over its own facets (authors' code) or over the footprint's
 param: angular_grid = projected in {projected, lobe}: Eq. 14 cell R wide in projected h (authors' code) or sqrt(R / D(n))
 param: gate = soft in {soft, hard}: the authors' soft Bernoulli gate or Eq. 18's hard one
+param: density_normal = irwin_hall in {irwin_hall, exact}: normal variate of the density randomization (exact: the authors')
+param: max_ratio = 0 in [0, 1000]: clamp of D_P / D(n) (authors' code: 20); 0 = none
 param: angular_blend = smoothstep in {bilinear, smoothstep}: weights of the 4 angular cells around h: Eq. 14's bilinear ones, or smoothstep per axis (ours)
-map: log_density = ln(density_per_uv) - density_randomization^2/2
+map: log_density = ln(0.2 density_per_uv) - density_randomization^2/2
 map: microfacet_roughness = (angular_size)^2 alpha^-2
+map: density_randomization = 0
+map: gate = 1
 */
 // An example of a user glint method (docs/user_methods.md): the built-in deliot2023 with one change, the
 // weights of the four hemispherical-grid cells around the projected half vector (Eq. 14).

@@ -20,6 +20,7 @@
 #include "checks/method_checks.h"
 #include "glints/user/user_methods.h"
 #include "platform/context.h"
+#include "reference/discrete_facets/material_check.h"
 
 namespace glimmer {
 
@@ -140,7 +141,7 @@ int runCheckCommand(const std::vector<std::string>& argList) {
     args.finish();
     for (const std::string& rule : options.rules)
         if (std::find(checks::ruleNames().begin(), checks::ruleNames().end(), rule) == checks::ruleNames().end())
-            throw UsageError("--rules: unknown rule '" + rule + "' (rules: convergence, furnace, finite, cost, constant-time)");
+            throw UsageError("--rules: unknown rule '" + rule + "' (rules: convergence, furnace, finite, cost, constant-time, physical-material)");
     // A path (anything with a slash or a .glsl ending) is a method file; otherwise a method of the table.
     bool isFile = target.find('/') != std::string::npos || (target.size() > 5 && target.substr(target.size() - 5) == ".glsl");
     std::string id = resolveGlintMethod(isFile ? "file:" + target : target, "check-method");
@@ -180,7 +181,26 @@ int runCheckCommand(const std::vector<std::string>& argList) {
             report.results.push_back(r);
         }
     }
+    std::string materialTable;
+    // physical-material renders the method and the CPU reference in this process: both are bounded (fixed views,
+    // fixed sizes), and its table is printed below the rules.
+    if (options.rules.empty() ||
+        std::find(options.rules.begin(), options.rules.end(), "physical-material") != options.rules.end()) {
+        facets::MaterialCheckOptions material;
+        material.size = options.size;
+        material.backend = options.backend;
+        material.shaderRoot = options.shaderRoot;
+        material.progress = options.progress;
+        std::vector<facets::MaterialCheckRow> rows = facets::checkPhysicalMaterial(id, material);
+        size_t within = 0;
+        for (const facets::MaterialCheckRow& row : rows) within += row.target.all();
+        checks::RuleResult rule{"physical-material", "info", "", "4x4 blocks vs the discrete-facet reference: CV, p99.9/mean within 1.5x, dark within 0.1, mean within 5 %"};
+        rule.measured = std::to_string(within) + " of " + std::to_string(rows.size()) + " views within the target (table below)";
+        report.results.push_back(rule);
+        materialTable = facets::formatMaterialTable(rows);
+    }
     std::fputs(checks::formatTable(report).c_str(), stdout);
+    if (!materialTable.empty()) std::printf("\nphysical-material (issue 36, docs/glint_statistics.md):\n%s", materialTable.c_str());
     std::fflush(stdout);
     if (report.passed()) return 0;
     std::string failed;

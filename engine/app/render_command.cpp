@@ -14,6 +14,7 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "glints/user/user_methods.h"
+#include "reference/discrete_facets/reference_render.h"
 #include "render/aov.h"
 #include "offscreen/offscreen.h"
 #include "render/settings.h"
@@ -58,6 +59,8 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     }
     if (args.flag("--list-scenes")) { std::fputs(describeScenes().c_str(), stdout); return 0; }
 
+    // The discrete-facet reference is offered here only (--method reference, --compare ...,reference).
+    facets::registerReferenceMethod();
     RenderRequest request = readCommonRenderOptions(args, "plane90", "deliot2023");
     request.width = request.height = 512;
     if (auto size = args.value("--size")) parseSize(*size, "--size", request.width, request.height);
@@ -108,7 +111,12 @@ int runRenderCommand(const std::vector<std::string>& argList) {
 
     if (compare) {
         if (format != ImageFormat::Png) throw UsageError("--compare: --out must be a .png file");
-        bench::CompareGrid grid = bench::renderComparison(request, compareMethods, crops);
+        bench::CustomTile reference{facets::kReferenceMethodId,
+                                    [](OffscreenSession& session, const RenderRequest& r) { return facets::renderReference(session, r); },
+                                    [](OffscreenSession& session, const RenderRequest& r) {
+                                        return facets::referenceCaption(session.scene(), r.settings);
+                                    }};
+        bench::CompareGrid grid = bench::renderComparison(request, compareMethods, crops, {reference});
         std::vector<uint8_t> bottomUp(grid.rgba.size());
         size_t row = size_t(grid.width) * 4;
         for (int y = 0; y < grid.height; ++y)
@@ -117,7 +125,15 @@ int runRenderCommand(const std::vector<std::string>& argList) {
         std::printf("%s\n", outPath.string().c_str());
         return 0;
     }
-    RenderResult result = renderOffscreen(request);
+    RenderResult result;
+    if (request.settings.method == facets::kReferenceMethodId) {
+        RenderRequest smooth = request;   // the session starts on smooth, whose AOVs the reference reads first
+        smooth.settings.method = "smooth";
+        OffscreenSession session(smooth);
+        result = facets::renderReference(session, request);
+    } else {
+        result = renderOffscreen(request);
+    }
     if (format == ImageFormat::Exr) writeExr(outPath, result.hdr.data(), result.width, result.height);
     else writePng(outPath, result.display.data(), result.width, result.height);
     if (printStats) {

@@ -61,7 +61,7 @@ void drawText(std::vector<uint8_t>& rgba, int width, int height, int x, int y, c
 const uint8_t kCropColours[4][3] = {{255, 80, 80}, {80, 200, 255}, {120, 255, 120}, {255, 220, 60}};
 
 CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::string>& methodIds,
-                             const std::vector<CropRect>& crops) {
+                             const std::vector<CropRect>& crops, const std::vector<CustomTile>& custom) {
     const int w = base.width, h = base.height;
     for (const CropRect& c : crops)
         if (c.x + c.width > w || c.y + c.height > h)
@@ -77,7 +77,16 @@ CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::s
         zoom.push_back(std::max(1, std::min((w - 2) / c.width, h / c.height)));
         insetRows += c.height * zoom.back() + 2 + kCompareGap;
     }
-    const int labelHeight = ui::kCellHeight * kCompareLabelScale + 8;
+    auto customTile = [&](const std::string& id) -> const CustomTile* {
+        for (const CustomTile& c : custom)
+            if (c.method == id) return &c;
+        return nullptr;
+    };
+    bool captions = false;
+    for (const std::string& id : methods) captions = captions || (customTile(id) && customTile(id)->caption);
+    // A caption line (font scale 1) under the labels when a tile has one.
+    const int captionHeight = captions ? ui::kCellHeight + 4 : 0;
+    const int labelHeight = ui::kCellHeight * kCompareLabelScale + 8 + captionHeight;
     CompareGrid grid;
     int n = int(methods.size());
     grid.width = n * w + (n + 1) * kCompareGap;
@@ -102,7 +111,8 @@ CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::s
     const uint8_t white[3] = {240, 240, 240};
     for (int t = 0; t < n; ++t) {
         request.settings.method = methods[t];
-        RenderResult result = session.render(request);
+        const CustomTile* special = customTile(methods[t]);
+        RenderResult result = special ? special->render(session, request) : session.render(request);
         CompareTile tile;
         tile.method = methods[t];
         tile.renderX = kCompareGap + t * (w + kCompareGap);
@@ -111,6 +121,9 @@ CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::s
         tile.labelHeight = labelHeight;
         tile.renderY = kCompareGap + labelHeight;
         drawText(grid.rgba, grid.width, grid.height, tile.labelX, tile.labelY, tile.method, kCompareLabelScale, white);
+        if (special && special->caption)
+            drawText(grid.rgba, grid.width, grid.height, tile.labelX, tile.labelY + ui::kCellHeight * kCompareLabelScale + 4,
+                     special->caption(session, request), 1, white);
         // Render rows are bottom-up; the grid is top-down.
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) put(tile.renderX + x, tile.renderY + y, &result.display[(size_t(h - 1 - y) * w + x) * 4]);

@@ -4,6 +4,7 @@
 // the UI's bitmap font.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,18 @@ constexpr int kCompareGap = 4;
 // Methods in grid order: smooth first, then `methods` in order (duplicates dropped); unknown ids throw.
 std::vector<std::string> comparisonMethods(const std::vector<std::string>& methods);
 
-// Renders `base` (its settings.method is ignored) once per method in one session and lays the tiles out.
+// A tile that is not a plain render of a table method: the command supplies how to render it and a caption line
+// drawn under its label (the discrete-facet reference, which this library does not link).
+struct CustomTile {
+    std::string method;
+    std::function<RenderResult(OffscreenSession&, const RenderRequest&)> render;
+    std::function<std::string(OffscreenSession&, const RenderRequest&)> caption;
+};
+
+// Renders `base` (its settings.method is ignored) once per method in one session and lays the tiles out; a method
+// named by a CustomTile is rendered by it.
 CompareGrid renderComparison(const RenderRequest& base, const std::vector<std::string>& methods,
-                             const std::vector<CropRect>& crops);
+                             const std::vector<CropRect>& crops, const std::vector<CustomTile>& custom = {});
 
 // Draws `text` (bitmap font, `scale` pixels per font pixel) into a top-down RGBA8 image; clipped at the edges.
 void drawText(std::vector<uint8_t>& rgba, int width, int height, int x, int y, const std::string& text, int scale,

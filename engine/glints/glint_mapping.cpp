@@ -53,6 +53,9 @@ static std::string number(float v) {
 }
 
 std::string mappingFormula(const ParamMapping& mapping) {
+    // A constant (power 0, no alpha): the mapping switches a knob to a fixed value whatever the material.
+    if (mapping.power == 0.0f && mapping.alphaPower == 0.0f && !mapping.log && mapping.minusHalfSquareOf.empty())
+        return mapping.param + " = " + number(mapping.scale);
     std::string term = glintQuantityName(mapping.quantity);
     if (mapping.power != 1.0f) term = "(" + term + ")^" + number(mapping.power);
     if (mapping.scale != 1.0f) term = number(mapping.scale) + " " + term;

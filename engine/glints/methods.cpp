@@ -17,6 +17,11 @@ static GlintMethod smoothMethod() {
             "Cook & Torrance 1982; Walter et al. 2007 (GGX); Beckmann 1963", {}};
 }
 
+// The material mappings' factors on the facet count, measured against the discrete-facet reference (issue 36,
+// docs/glint_statistics.md): deliot2023's log_density row and kemppinen2025's density row say why.
+constexpr float kDeliotPhysicalDensityScale = 0.2f;
+constexpr float kKemppinenPhysicalDensityScale = 0.1f;
+
 // Deliot & Belcour 2023: shaders/glints/deliot2023/deliot2023.glsl; defaults and ranges from methods.md (public ports).
 static GlintMethod deliot2023Method() {
     GlintMethod method{"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
@@ -24,7 +29,7 @@ static GlintMethod deliot2023Method() {
             "Deliot & Belcour 2023, Real-time rendering of glinty appearances using distributed binomial laws on "
             "anisotropic grids, Computer Graphics Forum 42(8)",
             {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
-             {"microfacet_roughness", 0.005f, 0.001f, 1.0f,
+             {"microfacet_roughness", 0.005f, 1e-5f, 1.0f,
               "R, ratio of micro- to macro-roughness: lower = fewer, brighter glints (useful 0.005-0.25)", {}, false,
               true},
              {"density_randomization", 2.0f, 0.0f, 10.0f, "std. deviation of the per-vertex log density"},
@@ -40,14 +45,31 @@ static GlintMethod deliot2023Method() {
               {"projected", "lobe"}},
              {"gate", 0.0f, 0.0f, 1.0f,
               "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
-              {"soft", "hard"}}},
+              {"soft", "hard"}},
+             // Issue 36's residual against the authors' randomized counts (docs/deliot2023.md): their normal variate
+             // is an inverse CDF (unbounded tails), and their NDF is clamped to 20 D(n); both kept as choices.
+             {"density_normal", 0.0f, 0.0f, 1.0f,
+              "normal variate of the density randomization: irwin_hall (4 uniforms, tails cut at 3.46 sigma) or "
+              "exact (inverse CDF, Giles' erfinv, as the authors' code)",
+              {"irwin_hall", "exact"}},
+             {"max_ratio", 0.0f, 0.0f, 1000.0f,
+              "clamp of D_P / D(n) (authors' code: 20, 'grazing angle extremities'); 0 = none"}},
             createDeliot2023Resources};
     method.materialMapping = {
-        {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
-         "Sec. 3: N(P) = facet density x area, its natural log per unit UV area; the authors' density "
-         "randomization draws each vertex's count as exp(N(log_density, sigma)), whose mean is "
-         "exp(log_density + sigma^2 / 2): the log-median is set so that the mean count is the material's density",
+        {"log_density", GlintQuantity::Density, kDeliotPhysicalDensityScale, 1.0f, 0.0f, true,
+         "Sec. 3: N(P) = facet density x area, its natural log per unit UV area, x 0.2: the 4 angular cells of "
+         "Eq. 14 are lerped and the 12 grid vertices blended, which averages independent draws; a fifth of the "
+         "facets restores the material's variance over 4x4 pixels (measured against the discrete-facet "
+         "reference, docs/glint_statistics.md). With a density randomization set, the log-median keeps the mean "
+         "count (minus sigma^2 / 2)",
          "density_randomization"},
+        {"density_randomization", GlintQuantity::Density, 0.0f, 0.0f, 0.0f, false,
+         "0: the authors' per-vertex log-normal count is a clumping device of their code, not a quantity of the "
+         "material (issue 36); --set deliot2023.density_randomization=2 restores it"},
+        {"gate", GlintQuantity::Density, 1.0f, 0.0f, 0.0f, false,
+         "hard (Eq. 18 as printed): the authors' soft gate lights sparse pixels at partial counts, a smoothing "
+         "device; the hard gate's dark fraction is the material's closer (docs/glint_statistics.md); --set "
+         "deliot2023.gate=soft restores it"},
         {"microfacet_roughness", GlintQuantity::AngularSize, 1.0f, 2.0f, -2.0f, false,
          "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
          "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
@@ -112,7 +134,11 @@ static GlintMethod kemppinen2025Method() {
             },
             nullptr};
     method.materialMapping = {
-        {"density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, false, "Table 1: K_P points per unit (UV) area"},
+        {"density", GlintQuantity::Density, kKemppinenPhysicalDensityScale, 1.0f, 0.0f, false,
+         "Table 1: K_P points per unit (UV) area, x 0.1: one point per cell of a jittered 4D grid with Gaussian "
+         "lobes varies far less over an area than Poisson facets; a tenth of the points restores the material's CV "
+         "and p99.9 / mean over 4x4 pixels (measured against the discrete-facet reference, "
+         "docs/glint_statistics.md)"},
         {"micro_roughness", GlintQuantity::AngularSize, 0.70710678f, 1.0f, 0.0f, false,
          "Eq. 4, Algorithm 1: one glint is a Gaussian of angular deviation alpha* (Sigma_a = pi D(h) alpha*^2 in "
          "the prior disk, where area pi D(h) (h.n) per steradian); its equivalent area 2 pi alpha*^2 equals the "

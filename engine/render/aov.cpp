@@ -16,7 +16,7 @@ const std::vector<AovInfo>& aovTable() {
         {"duvdy", VIEW_DUVDY, "UV derivative along screen y"},
         {"glint", VIEW_GLINT, "the NDF term D of the first light alone (linear)"},
         {"footprint", VIEW_FOOTPRINT, "footprint: R anisotropy ratio, G LOD, B/A method-specific"},
-        {"tangent", VIEW_TANGENT, "world-space tangent"},
+        {"tangent", VIEW_TANGENT, "world-space tangent; a: the bitangent's sign (b = a cross(n, t))"},
         {"material", VIEW_ROUGHNESS_METALLIC, "R alpha, G metallic, B material id"},
         {"extra", VIEW_EXTRA, "method-specific debug channel (see the method's documentation)"},
         {"ao", VIEW_AO, "ambient occlusion: visibility of the environment term (GTAO x sky visibility, before multi-bounce)"},

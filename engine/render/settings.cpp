@@ -20,6 +20,8 @@ const std::vector<CommonParam>& commonParams() {
         {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
         {{"light.count", 0.0f, 0.0f, 64.0f,
           "number of lights: 0 keeps the scene's; more adds lights around the first one's direction", {}, true}},
+        {{"light.turn", 0.0f, -360.0f, 360.0f,
+          "turns every light about the world's +y axis through the origin, degrees (glint lifespan measurements)"}},
         {{"material.alpha", 0.3f, 0.001f, 1.0f, "NDF roughness alpha of every material"}, true},
         {{"material.metallic", 1.0f, 0.0f, 1.0f, "metalness of every material"}, true},
         {{"material.ndf", 0.0f, 0.0f, 1.0f, "microfacet distribution of every material", {"ggx", "beckmann"}}, true},
@@ -212,6 +214,15 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
     }
     float scale = settings.value(param::light_intensity);
     for (Light& light : scene.lights) light.intensity *= scale;
+    if (float turn = settings.value(param::light_turn); turn != 0.0f) {
+        // Directions and positions alike (a point light circles the y axis), so h moves the same way everywhere.
+        float c = std::cos(glm::radians(turn)), s = std::sin(glm::radians(turn));
+        auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
+        for (Light& light : scene.lights) {
+            light.vector = rotate(light.vector);
+            light.spotDirection = rotate(light.spotDirection);
+        }
+    }
     int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.

@@ -257,7 +257,7 @@ vec4 debugView(int view, PixelSurface p, GlintPixel glint, vec3 radiance, LightS
         case VIEW_DUVDY: return vec4(s.duvdy, 0.0, 1.0);
         case VIEW_GLINT: return vec4(vec3(lights.firstLightD), 1.0);
         case VIEW_FOOTPRINT: return glintFootprintAOV(glint, s);
-        case VIEW_TANGENT: return vec4(s.t, 1.0);
+        case VIEW_TANGENT: return vec4(s.t, dot(s.b, cross(s.n, s.t)));   // a: the bitangent's sign (G-buffer)
         case VIEW_ROUGHNESS_METALLIC: return vec4(s.alpha, p.metallic, float(p.materialId), 1.0);
         case VIEW_EXTRA: return glintExtraAOV(glint, s);
         case VIEW_AO: return vec4(vec3(occlusion.a), 1.0);

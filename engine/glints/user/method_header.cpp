@@ -252,9 +252,9 @@ private:
         header_.params.push_back(spec);
     }
 
-    // map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]: the glint material's quantity feeding a declared
-    // parameter (glint_mapping.h; the same text --list-params prints for a built-in's mapping). A parameter
-    // without a map line keeps its default on every material (then --set).
+    // map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2], or NAME = NUMBER (a constant): the
+    // glint material's quantity feeding a declared parameter (glint_mapping.h; the same text --list-params prints
+    // for a built-in's mapping). A parameter without a map line keeps its default on every material (then --set).
     void parseMap(int line, const std::string& text) {
         const std::string shape = "expected 'map: NAME = [ln(][SCALE] QUANTITY[^POWER] [alpha^POWER][)] [- PARAM^2/2]'";
         size_t eq = text.find('=');
@@ -302,6 +302,12 @@ private:
                 fail(line, "map: '" + word.substr(0, 64) + "' is not a quantity (density_per_uv, angular_size, alpha, anisotropy, "
                            "color_variation, color.r, color.g, color.b, ndf) or " + shape.substr(9));
             mapping.power = power.empty() ? 1.0f : value;
+            haveQuantity = true;
+        }
+        // A number alone is a constant (e.g. 'map: density_randomization = 0', switching a knob off on every
+        // material, as --list-params prints such rows): quantity^0.
+        if (!haveQuantity && haveScale && !mapping.log && mapping.minusHalfSquareOf.empty()) {
+            mapping.power = 0.0f;
             haveQuantity = true;
         }
         if (!haveQuantity) fail(line, "map: no quantity; " + shape);

@@ -70,6 +70,37 @@ void deliotPrismWeights(float b[3], float t, out float lower[3], out float upper
     for (int j = 0; j < 3; ++j) lower[j] = max(b[j] - upper[j], 0.0);
 }
 
+// erfinv in single precision (M. Giles, "Approximating the erfinv function", GPU Computing Gems, 2010): the
+// density_normal=exact variate.
+float deliotErfinv(float x) {
+    float w = -log(max((1.0 - x) * (1.0 + x), 1e-30));
+    float p;
+    if (w < 5.0) {
+        w -= 2.5;
+        p = 2.81022636e-08;
+        p = 3.43273939e-07 + p * w;
+        p = -3.5233877e-06 + p * w;
+        p = -4.39150654e-06 + p * w;
+        p = 0.00021858087 + p * w;
+        p = -0.00125372503 + p * w;
+        p = -0.00417768164 + p * w;
+        p = 0.246640727 + p * w;
+        p = 1.50140941 + p * w;
+    } else {
+        w = sqrt(w) - 3.0;
+        p = -0.000200214257;
+        p = 0.000100950558 + p * w;
+        p = 0.00134934322 + p * w;
+        p = -0.00367342844 + p * w;
+        p = 0.00573950773 + p * w;
+        p = -0.0076224613 + p * w;
+        p = 0.00943887047 + p * w;
+        p = 1.00167406 + p * w;
+        p = 2.83297682 + p * w;
+    }
+    return p * x;
+}
+
 GlintPixel glintSetup(GlintSurface s) {
     GlintPixel px;
     // --- Sec. 5.1: footprint ellipse (major/minor axes of the UV footprint from the G-buffer derivatives).
@@ -179,6 +210,12 @@ GlintPixel glintSetup(GlintSurface s) {
             // tails cut at 3.46 sigma): Box-Muller's log and cos at 12 vertices tripled the cost of a pixel on llvmpipe.
             vec4 uniforms = vec4(uvec4(hv.x >> 16u, hv.y >> 16u, hv.z >> 16u, hv.z & 0xffffu)) * (1.0 / 65536.0);
             float gauss = (dot(uniforms, vec4(1.0)) - 2.0) * 1.7320508;
+            // density_normal=exact: the authors' variate, sqrt(2) erfinv(2u - 1) of one uniform (unbounded tails
+            // within float precision; issue 36's residual, docs/deliot2023.md).
+            if (P_DENSITY_NORMAL > 0.5) {
+                float u = (float(((hv.x >> 16u) << 8u) | (hv.z >> 24u)) + 0.5) * (1.0 / 16777216.0);
+                gauss = 1.41421356 * deliotErfinv(2.0 * u - 1.0);
+            }
             float logDensity = clamp(baseLogDensity + P_DENSITY_RANDOMIZATION * gauss, 0.0, 50.0);
             float facets = exp(logDensity) * cellArea * max(s.densityScale, 0.0);
             px.trials[index] = grids[i].weight * facets;
@@ -234,8 +271,9 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
         g_deliotEvaluations += 4;
         count += px.countWeight[v] * vertexCount;
     }
-    // Eq. 3-4: D_P = D(n)/R * count / N (the / N is in countWeight).
-    return px.Dn / R * count;
+    // Eq. 3-4: D_P = D(n)/R * count / N (the / N is in countWeight). max_ratio: the authors' clamp at 20 D(n).
+    float dp = px.Dn / R * count;
+    return P_MAX_RATIO > 0.0 ? min(dp, P_MAX_RATIO * px.Dn) : dp;
 }
 
 vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }

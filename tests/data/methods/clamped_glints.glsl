@@ -11,6 +11,8 @@ param: screen_space_scale = 1.5 in [0.1, 10]: grid cell size in pixels across th
 param: normalization = vertex in {vertex, footprint}: count normalization (see deliot2023)
 param: angular_grid = projected in {projected, lobe}: Eq. 14 cell width (see deliot2023)
 param: gate = soft in {soft, hard}: binomial gate (see deliot2023)
+param: density_normal = irwin_hall in {irwin_hall, exact}: normal variate of the randomization (see deliot2023)
+param: max_ratio = 0 in [0, 1000]: clamp of D_P / D(n) (see deliot2023)
 */
 // A deliberately broken user method for the failing check-method test. Clamping D to a few times the smooth
 // NDF (a "dynamic range" guard against fireflies) is harmless where the facets are dense, so the method still
