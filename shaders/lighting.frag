@@ -80,6 +80,39 @@ void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
     position = q;
 }
 
+#ifdef GLINT_SURFACE_DERIVATIVES
+// For methods that filter their NDF over the pixel's range of half vectors (GlintMethod::surfaceDerivatives;
+// Chermain et al. 2021, Sec. 4): the screen-space derivatives of the surface, which a full-screen pass cannot take
+// with dFdx. Of the two neighbours along each axis the one nearer the pixel's tangent plane (|offset . n| over
+// |offset| below 0.5) gives a one-sided difference of the G-buffer's position and shading normal; across an edge
+// (no such neighbour) the position moves in the tangent plane and the normal does not change.
+void glintSurfaceDerivatives(inout GlintSurface s, ivec2 pixel, vec3 gbufferPosition, vec3 position) {
+    s.viewDistance = distance(u_cameraPosition.xyz, position);
+    vec2 centre = vec2(pixel) + 0.5;
+    vec3 planeCentre = tangentPlanePoint(centre, position, s.n);
+    for (int axis = 0; axis < 2; ++axis) {
+        ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+        vec3 dp = tangentPlanePoint(centre + vec2(step), position, s.n) - planeCentre;
+        vec3 dn = vec3(0.0);
+        float best = 0.5;
+        for (int side = -1; side <= 1; side += 2) {
+            ivec2 q = pixel + side * step;
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_viewport.xy))) continue;
+            float d = texelFetch(g_depth, q, 0).r;
+            if (d <= 0.0) continue;
+            vec3 offset = worldPosition(q, d) - gbufferPosition;
+            float deviation = abs(dot(offset, s.n)) / max(length(offset), 1e-20);
+            if (deviation < best) {
+                best = deviation;
+                dp = float(side) * offset;
+                dn = float(side) * (normalize(texelFetch(g_normalAlpha, q, 0).xyz) - s.n);
+            }
+        }
+        if (axis == 0) { s.dpdx = dp; s.dndx = dn; } else { s.dpdy = dp; s.dndy = dn; }
+    }
+}
+#endif
+
 vec3 finiteOrZero(vec3 c) {
     bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
     return any(bad) ? vec3(0.0) : c;
@@ -122,6 +155,7 @@ void main() {
     s.n = normalize(normalAlpha.xyz);
     s.t = normalize(tangentMetallic.xyz - s.n * dot(s.n, tangentMetallic.xyz));
     s.b = duvdyMaterial.w * cross(s.n, s.t);
+    clearGlintSurfaceExtras(s);
 #ifdef NON_GLINTY_PIXELS
     // The pixels lighting_class.frag did not mark glinty (render/passes/lighting_pass.h): the compiler drops the
     // method's code, and every other term is this shader's own.
@@ -141,6 +175,9 @@ void main() {
     // geometric edges of glinty surfaces are still anti-aliased.
     if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
     s.position = position;
+#if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
+    if (glinty) glintSurfaceDerivatives(s, pixel, gbufferPosition, position);
+#endif
     vec3 toEye = normalize(u_cameraPosition.xyz - position);
     mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
     vec3 wo = worldToShading * toEye;
@@ -244,6 +281,9 @@ void main() {
         if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
+#ifdef GLINT_SURFACE_DERIVATIVES
+        g_glintLightDistance = u_lights[i].vectorType.w < 0.5 ? 0.0 : distance(u_lights[i].vectorType.xyz, position);
+#endif
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));

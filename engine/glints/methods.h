@@ -78,6 +78,10 @@ struct GlintMethod {
     // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
     // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
     bool glintPostPass = false;
+    // The lighting pass fills GlintSurface's screen-space derivatives of the position and the shading normal and
+    // sets g_glintLightDistance per light (GLINT_SURFACE_DERIVATIVES; shaders/common/glint_surface.glsl), for
+    // methods that filter over the pixel's range of half vectors (Chermain et al. 2021's anti-aliasing).
+    bool surfaceDerivatives = false;
     // How the glint material (scene.h GlintMaterial) sets this method's parameters per material (glint_mapping.h);
     // parameters without a mapping keep their default unless --set. Each row cites the paper's definition.
     std::vector<ParamMapping> materialMapping;

@@ -17,6 +17,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.stages = {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}};
     desc.defines = {method.define, ibl.define};
     if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
+    if (method.surfaceDerivatives) desc.defines.push_back("GLINT_SURFACE_DERIVATIVES");
     if (shadows) desc.defines.push_back("SHADOWS");
     if (nonGlinty) {
         static const std::string nonGlintyDefine = "NON_GLINTY_PIXELS";   // (a named string: GCC 12's -Warray-bounds
