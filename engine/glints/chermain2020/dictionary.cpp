@@ -91,7 +91,7 @@ Dictionary generateDictionary(const DictionarySpec& spec, int threads, const std
     std::atomic<int> next{0}, done{0};
     std::mutex progressMutex;
     auto work = [&] {
-        std::vector<double> acc(size_t(res));
+        std::vector<double> acc(static_cast<size_t>(res), 0.0);
         for (int m = next++; m < spec.marginals; m = next++) {
             std::vector<double> means = lobeMeans(spec, m);
             std::fill(acc.begin(), acc.end(), 0.0);

@@ -355,6 +355,6 @@ vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }
 // footprint or every cell beyond the dictionary).
 vec4 glintExtraAOV(GlintPixel px, GlintSurface s) {
     float perCall = g_chermainLightCalls > 0 ? float(g_chermainCells) / float(g_chermainLightCalls) : 0.0;
-    bool smooth = px.noFootprint || (px.levels[0].allSmooth && px.levels[1].allSmooth);
-    return vec4(perCall, float(g_chermainCells), float(g_chermainLightCalls), smooth ? 1.0 : 0.0);
+    bool allSmooth = px.noFootprint || (px.levels[0].allSmooth && px.levels[1].allSmooth);
+    return vec4(perCall, float(g_chermainCells), float(g_chermainLightCalls), allSmooth ? 1.0 : 0.0);
 }
