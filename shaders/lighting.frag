@@ -38,6 +38,10 @@ layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
 layout(binding = UNIT_GBUFFER_CLEARCOAT) uniform sampler2D g_clearcoat;   // KHR_materials_clearcoat (gbuffer.frag)
 // rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
 layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
+#ifdef GLINT_SLOPE_COVARIANCE
+// G-buffer target 6: the LEAN-filtered normal map's slope covariance (GlintMethod::slopeCovariance).
+layout(binding = UNIT_GBUFFER_SLOPE_COVARIANCE) uniform sampler2D g_slopeCovariance;
+#endif
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
@@ -175,6 +179,9 @@ void main() {
     // geometric edges of glinty surfaces are still anti-aliased.
     if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
     s.position = position;
+#if defined(GLINT_SLOPE_COVARIANCE) && !defined(NON_GLINTY_PIXELS)
+    if (glinty) s.slopeCovariance = texelFetch(g_slopeCovariance, pixel, 0).xyz;
+#endif
 #if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
     if (glinty) glintSurfaceDerivatives(s, pixel, gbufferPosition, position);
 #endif
@@ -234,8 +241,14 @@ void main() {
         for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
         occlusion /= aoTaps.total;
     }
+    // A method may widen the roughness the environment sees (GLINT_ENVIRONMENT_ALPHA, shaders/glints/README.md:
+    // Chermain et al. 2021 light the environment with the LEAN-filtered roughness).
+    GlintSurface environmentSurface = s;
+#if defined(GLINT_ENVIRONMENT_ALPHA) && !defined(NON_GLINTY_PIXELS)
+    if (glinty) environmentSurface.alpha = glintEnvironmentAlpha(glint, s);
+#endif
     vec3 radiance = occlusion.rgb * (envEnabled()
-        ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
+        ? iblRadiance(glint, environmentSurface, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
     if (coated) {
         // The coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror

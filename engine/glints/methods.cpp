@@ -226,6 +226,7 @@ static GlintMethod chermainMethod(bool version2021) {
          {"seed", 0.0f, 0.0f, 1e6f, "random seed of the cells", {}, true}},
         createChermain2020Resources};
     method.surfaceDerivatives = true;   // GGAA (2021 Sec. 4) needs the pixel's range of half vectors
+    method.slopeCovariance = true;      // LEAN-filtered normal maps (2021 Sec. 6)
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, 0.25f, 1.0f, 0.0f, true,
          "Sec. 5, Alg. 3: a cell of n microfacets uses dictionary level log4 n, whose product of marginals has "

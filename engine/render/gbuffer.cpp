@@ -19,10 +19,11 @@ static gl::Framebuffer labelledFramebuffer(const char* label) {
     return gl::Framebuffer(id);
 }
 
-void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart) {
+void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart, bool slopeCovariance) {
     if (width == width_ && height == height_) {
         if (glintPost && !glintEnvironment_) allocateGlintPost();
         if (glintPart && !glintPart_) allocateGlintPart();
+        if (slopeCovariance && !slopeCovariance_) allocateSlopeCovariance();
         return;
     }
     // Post targets of another size than the render size (TAA upsampling) survive a render-size change: dynamic
@@ -32,6 +33,7 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
     height_ = height;
     glintEnvironment_ = {};  // reallocated below at the new size when needed
     glintPart_ = {};
+    slopeCovariance_ = {};
     // Target 5, the clear coat: half floats keep the coat normal's octahedral code fine enough for a mirror-like
     // coat (8 bits would band its highlight); 8 bytes a pixel.
     static const GLenum formats[kGBufferColorCount] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA8,
@@ -58,6 +60,17 @@ void FrameTargets::resize(int width, int height, bool glintPost, bool glintPart)
     }
     if (glintPost) allocateGlintPost();
     if (glintPart) allocateGlintPart();
+    if (slopeCovariance) allocateSlopeCovariance();
+}
+
+void FrameTargets::allocateSlopeCovariance() {
+    // Half floats: the covariance of slopes (0 .. ~1 for real normal maps) needs no more, 8 bytes a pixel.
+    slopeCovariance_ = gl::createTexture2D(GL_RGBA16F, width_, height_);
+    gbufferSlopeFbo_ = gl::createFramebuffer(
+        "gbuffer+slope covariance",
+        {gbuffer_[0].id(), gbuffer_[1].id(), gbuffer_[2].id(), gbuffer_[3].id(), gbuffer_[4].id(), gbuffer_[5].id(),
+         slopeCovariance_.id()},
+        depth_.id());
 }
 
 void FrameTargets::resizePost(int width, int height) {

@@ -10,9 +10,9 @@ public:
     // UNIT_GBUFFER_FIRST + 5 (the depth): see gbufferUnit().
     static constexpr int kGBufferColorCount = 6;
 
-    // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets, and
-    // `glintPart` the glint part target of TAA (below).
-    void resize(int width, int height, bool glintPost = false, bool glintPart = false);
+    // (Re)allocates when the size changes; `glintPost` also allocates the lighting pass's glint targets,
+    // `glintPart` the glint part target of TAA and `slopeCovariance` G-buffer target 6 (below).
+    void resize(int width, int height, bool glintPost = false, bool glintPart = false, bool slopeCovariance = false);
     int width() const { return width_; }
     int height() const { return height_; }
     // The image pipeline after TAA (exposure, bloom, tone mapping, the display image) runs at the post size: the
@@ -25,6 +25,11 @@ public:
     GLuint postHdrTexture() const { return postHdr_ ? postHdr_.id() : hdr_.id(); }
 
     GLuint gbufferFramebuffer() const { return gbufferFbo_.id(); }
+    // For glint methods that filter normal maps (GlintMethod::slopeCovariance): the G-buffer with a seventh
+    // target, RGBA16F, the LEAN-filtered normal map's slope covariance (Sigma_xx, Sigma_yy, Sigma_xy; 0 elsewhere),
+    // written by the G-buffer pass's GBUFFER_SLOPE_COVARIANCE program and read by the lighting pass.
+    GLuint gbufferSlopeFramebuffer() const { return gbufferSlopeFbo_.id(); }
+    GLuint slopeCovarianceTexture() const { return slopeCovariance_.id(); }
     GLuint gbufferTexture(int i) const { return gbuffer_[i].id(); }
     GLuint depthTexture() const { return depth_.id(); }
     GLuint hdrFramebuffer() const { return hdrFbo_.id(); }
@@ -58,6 +63,9 @@ private:
     gl::Framebuffer shadingClassFbo_;
     gl::Framebuffer gbufferFbo_, hdrFbo_, displayFbo_;
     void allocateGlintPost();
+    void allocateSlopeCovariance();
+    gl::Texture slopeCovariance_;
+    gl::Framebuffer gbufferSlopeFbo_;
     gl::Texture glintEnvironment_, glintLights_;
     gl::Framebuffer lightingGlintFbo_;
     void allocateGlintPart();

@@ -263,7 +263,8 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     const bool probesActive = ibl.readsProbes && environment_.enabled() && probeSettings(settings_).enabled;
     ReflectionProbes::Update probeUpdate;
     if (probesActive) probeUpdate = probes_->update(scene, gpuScene, environment_, settings_);
-    targets_.resize(width, height, findGlintMethod(settings_.method).glintPostPass, temporalAa);
+    const GlintMethod& method = findGlintMethod(settings_.method);
+    targets_.resize(width, height, method.glintPostPass, temporalAa, method.slopeCovariance);
     // TAA upsampling: the history, the post passes and the display image at the output size.
     // taa.upsample=0 resolves at the render size (the post passes then run on 1 / scale^2 fewer pixels) and leaves
     // the upscale to the caller.

@@ -18,6 +18,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.defines = {method.define, ibl.define};
     if (method.glintPostPass) desc.defines.push_back("GLINT_POST_PASS");
     if (method.surfaceDerivatives) desc.defines.push_back("GLINT_SURFACE_DERIVATIVES");
+    if (method.slopeCovariance) desc.defines.push_back("GLINT_SLOPE_COVARIANCE");
     if (shadows) desc.defines.push_back("SHADOWS");
     if (nonGlinty) {
         static const std::string nonGlintyDefine = "NON_GLINTY_PIXELS";   // (a named string: GCC 12's -Warray-bounds
@@ -107,6 +108,8 @@ void LightingPass::bindInputs(const FrameContext& frame) {
         glBindTextureUnit(i == 5 ? GLuint(UNIT_GBUFFER_CLEARCOAT) : GLuint(UNIT_GBUFFER_FIRST + i),
                           frame.targets.gbufferTexture(i));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
+    if (findGlintMethod(frame.settings.method).slopeCovariance)
+        glBindTextureUnit(UNIT_GBUFFER_SLOPE_COVARIANCE, frame.targets.slopeCovarianceTexture());
     if (!frame.ambientOcclusion && !unoccluded_) unoccluded_ = gl::createConstantTexture(1.0f, 1.0f, 1.0f, 1.0f);
     glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.ambientOcclusion ? frame.ambientOcclusion : unoccluded_.id());
 }

@@ -347,6 +347,14 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     return max(P, 0.0) / cos4;
 }
 
+// The roughness the environment is lit with (GLINT_ENVIRONMENT_ALPHA, shaders/glints/README.md). The authors light
+// the environment with the prefiltered map at the LEAN-filtered roughness (2021 code: lod from max(sigma_x,
+// sigma_y)), without glints: with normal_filtering, alpha = sqrt 2 max(sigma_x, sigma_y); else the material's.
+#define GLINT_ENVIRONMENT_ALPHA 1
+float glintEnvironmentAlpha(GlintPixel px, GlintSurface s) {
+    return P_NORMAL_FILTERING > 0.5 ? 1.41421356 * max(px.shape.x, px.shape.y) : s.alpha;
+}
+
 // x: anisotropy after the max_anisotropy clamp, y: LOD l, z: log4 of the microfacets per cell of the finer level,
 // w: the weight of the coarser level.
 vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }
