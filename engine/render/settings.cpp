@@ -20,6 +20,8 @@ const std::vector<CommonParam>& commonParams() {
         {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
         {{"light.count", 0.0f, 0.0f, 64.0f,
           "number of lights: 0 keeps the scene's; more adds lights around the first one's direction", {}, true}},
+        {{"light.turn", 0.0f, -6.2832f, 6.2832f,
+          "turns every light about the vertical axis (world +y through the origin) by this many radians"}},
         {{"material.alpha", 0.3f, 0.001f, 1.0f, "NDF roughness alpha of every material"}, true},
         {{"material.metallic", 1.0f, 0.0f, 1.0f, "metalness of every material"}, true},
         {{"material.ndf", 0.0f, 0.0f, 1.0f, "microfacet distribution of every material", {"ggx", "beckmann"}}, true},
@@ -226,6 +228,14 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
                                                           v.x * std::sin(angle) + v.z * std::cos(angle)))
                                : v + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
             scene.lights.push_back(extra);
+        }
+    }
+    if (float turn = settings.common_("light.turn"); turn != 0.0f) {
+        const float c = std::cos(turn), s = std::sin(turn);
+        auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
+        for (Light& light : scene.lights) {
+            light.vector = rotate(light.vector);
+            light.spotDirection = rotate(light.spotDirection);
         }
     }
 }
