@@ -21,6 +21,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "core/image_io.h"
 #include "glints/chermain2020/dictionary.h"
 #include "glints/chermain2020/resources.h"
 #include "glints/method_checks.h"
@@ -570,4 +571,91 @@ TEST(Chermain2021AntiAliasing, GlintsPopLessUnderALightTurn) {
     EXPECT_LT(smooth.popping, 0.2 * without.popping);
     EXPECT_LE(with.popping, 0.8 * without.popping);
     EXPECT_LT(with.meanFlicker, without.meanFlicker);
+}
+
+namespace {
+
+// A sphere whose material has a normal map of random smooth bumps: 24 plane waves of random direction and phase
+// with periods of 8 to 16 texels (whole waves per 64-texel tile), scaled to a slope deviation of 0.2: a Gaussian
+// field of slopes, smooth at the texel scale, so that bilinear magnification does not change its statistics.
+// Tiled 1.4 times per metre of UV: about 2 pixels per texel in a 1024-pixel view, 16 texels per pixel at 32.
+std::string bumpySphereScene(const std::string& dir) {
+    const int n = 64, waves = 24;
+    std::mt19937 rng(3);
+    std::vector<glm::dvec2> slope(size_t(n) * n, glm::dvec2(0.0));
+    std::uniform_int_distribution<int> frequency(-8, 8);
+    std::uniform_real_distribution<double> phase(0.0, 2.0 * M_PI);
+    for (int w = 0; w < waves; ++w) {
+        int kx, ky;
+        do {
+            kx = frequency(rng);
+            ky = frequency(rng);
+        } while (kx * kx + ky * ky < 16 || kx * kx + ky * ky > 64);   // period n / |k| in [8, 16] texels
+        double ph = phase(rng);
+        glm::dvec2 k(2.0 * M_PI * kx / n, 2.0 * M_PI * ky / n);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) slope[size_t(y) * n + x] += k * std::cos(k.x * (x + 0.5) + k.y * (y + 0.5) + ph);
+    }
+    double variance = 0.0;
+    for (const glm::dvec2& s : slope) variance += 0.5 * glm::dot(s, s) / slope.size();
+    std::vector<uint8_t> rgba(size_t(n) * n * 4);
+    for (size_t i = 0; i < slope.size(); ++i) {
+        glm::dvec2 m = slope[i] * (0.2 / std::sqrt(variance));
+        glm::dvec3 normal = glm::normalize(glm::dvec3(-m, 1.0));
+        for (int c = 0; c < 3; ++c) rgba[4 * i + c] = uint8_t(std::lround((normal[c] * 0.5 + 0.5) * 255.0));
+        rgba[4 * i + 3] = 255;
+    }
+    std::string png = dir + "/bumps.png";
+    writePng(png, rgba.data(), n, n);
+    std::string path = dir + "/bumpy_sphere.json";
+    std::ofstream(path) << "{\"base\": \"sphere\", \"materials\": [{\"name\": \"sphere\", \"normalTexture\": \"" << png
+                        << "\", \"uvScale\": 1.4}]}\n";
+    return path;
+}
+
+}  // namespace
+
+// Chermain et al. 2021, Sec. 6: LEAN mapping moves the normal map's detail that a pixel cannot resolve into the
+// NDF. A 32-pixel view of a bumpy sphere (16 normal-map texels per pixel) against the same view rendered at 1024
+// pixels without LEAN (2 pixels per texel) and box-filtered 32 x 32: with LEAN the glint AOV's relative L2 error
+// over the sphere is at most 0.7 x the error without it (which sees only the filtered, flattened normals: a
+// highlight too sharp; measured 0.27 against 0.48), and its mean is within 5 % (measured 1.7 %). Smooth
+// cells (log density 60) isolate the normal-map filtering from the glints. LEAN's second moments are those of the
+// texels, which equal the magnified surface's only for normal maps smooth at the texel scale: on per-texel noise a
+// supersampled view sees the bilinearly interpolated normals, whose variance is lower (docs/chermain2020.md).
+TEST(Chermain2021Lean, NormalMapFilteringMatchesTheResolvedNormalMap) {
+    std::string scene = bumpySphereScene(test::makeTempDir("chermain2021_lean"));
+    std::vector<std::string> common = {"chermain2021.anti_aliasing=none", "chermain2021.log_density=60"};
+    auto glint = [&](int size, const std::string& filtering) {
+        std::vector<std::string> sets = common;
+        sets.push_back("chermain2021.normal_filtering=" + filtering);
+        RenderResult r = renderWith(scene, "chermain2021", sets, "glint", size);
+        EXPECT_EQ(r.stats["counts"]["non_finite_values"].get<size_t>(), 0u);
+        std::vector<double> d(size_t(size) * size);
+        for (size_t i = 0; i < d.size(); ++i) d[i] = r.hdr[4 * i];
+        return d;
+    };
+    const int n = 32, factor = 32;
+    std::vector<double> big = glint(n * factor, "none"), reference(size_t(n) * n, 0.0);
+    for (int y = 0; y < n * factor; ++y)
+        for (int x = 0; x < n * factor; ++x)
+            reference[size_t(y / factor) * n + x / factor] += big[size_t(y) * n * factor + x] / (factor * factor);
+    auto error = [&](const std::vector<double>& d, double& meanRatio) {
+        double e2 = 0, r2 = 0, sd = 0, sr = 0;
+        for (size_t i = 0; i < d.size(); ++i) {
+            if (reference[i] <= 0.0) continue;
+            e2 += (d[i] - reference[i]) * (d[i] - reference[i]);
+            r2 += reference[i] * reference[i];
+            sd += d[i];
+            sr += reference[i];
+        }
+        meanRatio = sd / sr;
+        return std::sqrt(e2 / r2);
+    };
+    double meanNone, meanLean;
+    double none = error(glint(n, "none"), meanNone), lean = error(glint(n, "lean"), meanLean);
+    std::printf("relative L2 error against the resolved normal map: without LEAN %.3f (mean %.3f), LEAN %.3f "
+                "(mean %.3f)\n", none, meanNone, lean, meanLean);
+    EXPECT_LE(lean, 0.7 * none);
+    EXPECT_NEAR(meanLean, 1.0, 0.05);
 }
