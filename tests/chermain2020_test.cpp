@@ -659,3 +659,19 @@ TEST(Chermain2021Lean, NormalMapFilteringMatchesTheResolvedNormalMap) {
     EXPECT_LE(lean, 0.7 * none);
     EXPECT_NEAR(meanLean, 1.0, 0.05);
 }
+
+// With several lights the cells' draws are made once per pixel and kept (glintSetup), with one light where glintD
+// evaluates them: the first light's D (glint AOV) is the same either way, on plane90 (every pixel cached) and
+// plane25 (elongated footprints overflow the cache and draw per light), 1e-5 relative.
+TEST(Chermain2020Cache, SharedDrawsGiveTheSameNdf) {
+    for (const char* scene : {"plane90", "plane25"}) {
+        RenderResult one = renderWith(scene, "chermain2020", {"light.count=1"}, "glint", 96);
+        RenderResult three = renderWith(scene, "chermain2020", {"light.count=3"}, "glint", 96);
+        size_t lit = 0;
+        for (size_t i = 0; i < one.hdr.size(); i += 4) {
+            ASSERT_NEAR(three.hdr[i], one.hdr[i], 1e-5f * std::max(one.hdr[i], 1.0f)) << scene << " pixel " << i / 4;
+            lit += one.hdr[i] > 0.0f;
+        }
+        EXPECT_GT(lit, one.hdr.size() / 8) << scene;
+    }
+}

@@ -29,6 +29,10 @@
 #include "glints/chermain2020/chermain2020_dictionary.glsl"
 
 const int CHERMAIN_MAX_CELLS_PER_LEVEL = 128;   // guard (authors: 100 iterations of the bounding box)
+// The cells' draws (Alg. 3 lines 1-18 do not depend on the light) are made once per pixel and kept for every light
+// when the two levels hold at most this many non-empty cells (isotropic footprints: 10-22); a level with more is
+// drawn again per light (elongated footprints).
+const int CHERMAIN_CACHED_CELLS = 24;
 const float CHERMAIN_MAX_NORMAL = 5.4;          // largest |N(0, 1)| the 24-bit uniforms below can give
 
 struct ChermainLevel {
@@ -38,10 +42,22 @@ struct ChermainLevel {
     vec3 ellipse;     // EWA quadratic form A ss^2 + B ss tt + C tt^2 < 1 (Alg. 2)
     ivec2 rows;       // first and last row of the ellipse's bounding box
     bool allSmooth;   // every cell of the level is at l_dist = L: the level's P22 is the smooth one
+    int firstCached;  // the level's draws in GlintPixel.cells[firstCached, firstCached + cached)
+    int cached;       // -1: not cached (more cells than the cache holds), drawn per light
+    float sumWeights; // of every cell of the level (empty ones included)
+};
+
+// One cell's draw (Alg. 3): not stored when the cell is empty.
+struct ChermainCell {
+    bool empty;
+    int lDist;         // dictionary level, CHERMAIN_LEVELS = the smooth NDF
+    int i, j;          // the two marginals
+    float ct, sn;      // cos and sin of the random rotation
 };
 
 struct GlintPixel {
     ChermainLevel levels[2];
+    vec4 cells[CHERMAIN_CACHED_CELLS];   // EWA weight, cos, sin, lDist + 256 i + 65536 j (exact in float)
     float blend;        // weight of levels[1] (Alg. 1 line 7)
     bool noFootprint;   // zero footprint: the smooth NDF (authors' code)
     bool noFacets;      // density scale <= 0: no microfacets, no specular reflection
@@ -99,6 +115,9 @@ ChermainLevel chermainSetupLevel(int level, vec2 st, vec2 d0, vec2 d1, float log
     ChermainLevel lv;
     lv.level = level;
     lv.log4n = log4nLevel0 + float(level);   // a cell of level l holds 4^l cells of level 0
+    lv.firstCached = 0;
+    lv.cached = 0;
+    lv.sumWeights = 0.0;
     float cellsPerUnit = exp2(float(CHERMAIN_LEVELS - 1 - level));
     lv.st = st * cellsPerUnit - 0.5;
     d0 *= cellsPerUnit;
@@ -120,6 +139,8 @@ ChermainLevel chermainSetupLevel(int level, vec2 st, vec2 d0, vec2 d1, float log
                    P_MICROFACET_RELATIVE_AREA >= 1.0;
     return lv;
 }
+
+void chermainDrawLevels(inout GlintPixel px);   // below: Alg. 2-3, the cells' draws
 
 GlintPixel glintSetup(GlintSurface s) {
     GlintPixel px;
@@ -165,6 +186,10 @@ GlintPixel glintSetup(GlintSurface s) {
     float log4n0 = lnN0 / 1.38629436;
     px.levels[0] = chermainSetupLevel(il, st, d0, d1, log4n0);
     px.levels[1] = chermainSetupLevel(il + 1, st, d0, d1, log4n0);
+    // With one light the cells are drawn where glintD evaluates them (caching them costs 7-10 % more there); with
+    // more, once here (u_exposure.y: the frame's light count; 0 in the probes).
+    px.levels[0].cached = px.levels[1].cached = -1;
+    if (!px.noFootprint && !px.noFacets && u_exposure.y > 1.5) chermainDrawLevels(px);
     px.footprint = vec4(minor > 0.0 ? major / minor : 1.0, l, px.levels[0].log4n, px.blend);
     return px;
 }
@@ -180,30 +205,38 @@ struct ChermainSlope {
     bool filtered;
 };
 
-// Alg. 3 for the cell `cell` of a level: the cell's NDF in slope space.
-float chermainCellP22(ChermainSlope sl, ChermainLevel lv, ivec2 cell) {
+// Alg. 3 lines 1-18 for the cell `cell` of a level: what it draws (independent of the light).
+ChermainCell chermainDrawCell(ChermainLevel lv, ivec2 cell) {
+    ChermainCell c;
     // Eq. 8, Alg. 3 line 1: the coherent index. A cell is seeded by its first level-0 cell, so it keeps the random
     // numbers of one of its children across a level transition (the hash has no level in it).
     uvec2 first = uvec2(cell) << uint(min(lv.level, 31));
     uvec4 r = chermainHash4(uvec4(first, floatBitsToUint(P_SEED), 0x9e3779b9u));
     // Alg. 3 lines 3-4: an empty cell with probability 1 - relative area.
     float uArea = (float(r.x & 0xffffu) + 0.5) * (1.0 / 65536.0);
-    if (uArea > P_MICROFACET_RELATIVE_AREA) return 0.0;
+    c.empty = uArea > P_MICROFACET_RELATIVE_AREA;
     // Alg. 3 lines 7-9: the dictionary level, randomized around log4 n (zeta = density_randomization), rounded.
     float uDensity = (float(r.y >> 8u) + 0.5) * (1.0 / 16777216.0);
-    int lDist = int(clamp(round(lv.log4n + P_DENSITY_RANDOMIZATION * chermainProbit(uDensity)), 0.0,
-                          float(CHERMAIN_LEVELS)));
-    // Alg. 3 lines 10-11: beyond the dictionary the cell is the smooth distribution.
-    if (lDist == CHERMAIN_LEVELS) return sl.smoothP22;
-    // Alg. 3 lines 13-16: the cell's random rotation (against glint alignment), then the dictionary's scale.
+    c.lDist = int(clamp(round(lv.log4n + P_DENSITY_RANDOMIZATION * chermainProbit(uDensity)), 0.0,
+                        float(CHERMAIN_LEVELS)));
+    // Alg. 3 lines 13-15: the cell's random rotation (against glint alignment).
     float theta = 2.0 * PI * (float(r.x >> 16u) + 0.5) * (1.0 / 65536.0);
-    float ct = cos(theta), sn = sin(theta);
-    mat2 invR = mat2(ct, -sn, sn, ct);
+    c.ct = cos(theta);
+    c.sn = sin(theta);
+    // Alg. 3 lines 17-18: the two marginals of the cell.
+    c.i = int(((r.z & 0xffffu) * uint(CHERMAIN_MARGINALS)) >> 16u);
+    c.j = int(((r.z >> 16u) * uint(CHERMAIN_MARGINALS)) >> 16u);
+    return c;
+}
+
+// Alg. 3 lines 10-19: the NDF in slope space of a non-empty cell.
+float chermainCellP22(ChermainSlope sl, ChermainCell c) {
+    // Alg. 3 lines 10-11: beyond the dictionary the cell is the smooth distribution.
+    if (c.lDist == CHERMAIN_LEVELS) return sl.smoothP22;
+    // Alg. 3 line 16: the slope rotated by the cell's angle, in the dictionary's scale.
+    mat2 invR = mat2(c.ct, -c.sn, c.sn, c.ct);
     vec2 a = abs(CHERMAIN_SIGMA_DICT * (invR * sl.u));   // the marginals are even
     if (a.x >= CHERMAIN_RANGE || a.y >= CHERMAIN_RANGE) return 0.0;
-    // Alg. 3 lines 17-18: the two marginals of the cell.
-    int i = int(((r.z & 0xffffu) * uint(CHERMAIN_MARGINALS)) >> 16u);
-    int j = int(((r.z >> 16u) * uint(CHERMAIN_MARGINALS)) >> 16u);
     vec2 t = a * (1.0 / CHERMAIN_RANGE);
     // glint_angle (ours, the glint material's gamma): a lobe of the dictionary is sigma_lobe wide in dictionary
     // slopes. A wider glint (a cone of half-angle gamma holds the area of a Gaussian of deviation gamma / sqrt 2) is
@@ -220,47 +253,100 @@ float chermainCellP22(ChermainSlope sl, ChermainLevel lv, ivec2 cell) {
         // 2021 Sec. 4: the footprint in slope space goes through the same transform as the slope.
         vec2 gx = CHERMAIN_SIGMA_DICT * (invR * sl.dudx), gy = CHERMAIN_SIGMA_DICT * (invR * sl.dudy);
         vec2 gxw = sqrt(gx * gx + widen * widen);
-        pi_ = chermainMarginalGrad(lDist, i, t.x, gxw.x, gy.x);
-        pj = chermainMarginalGrad(lDist, j, t.y, gxw.y, gy.y);
+        pi_ = chermainMarginalGrad(c.lDist, c.i, t.x, gxw.x, gy.x);
+        pj = chermainMarginalGrad(c.lDist, c.j, t.y, gxw.y, gy.y);
     } else {
         float lod = widen > 0.0 ? log2(max(widen * float(CHERMAIN_TEXELS), 1.0)) : 0.0;
-        pi_ = chermainMarginalLod(lDist, i, t.x, lod);
-        pj = chermainMarginalLod(lDist, j, t.y, lod);
+        pi_ = chermainMarginalLod(c.lDist, c.i, t.x, lod);
+        pj = chermainMarginalLod(c.lDist, c.j, t.y, lod);
     }
     // Alg. 3 line 19 (Eq. 11): the product, times the Jacobian of the transform (normalized in material slopes).
     return pi_ * pj * sl.jacobian;
 }
 
-// Alg. 2: the EWA-weighted mean of the cells' NDFs over the footprint at one level. The authors scan the ellipse's
-// bounding box with a guard of 100 iterations, which for rotated anisotropic footprints stops before the ellipse
-// is covered; here each row visits only its span inside the ellipse (same cells, same weights), with a guard of
-// CHERMAIN_MAX_CELLS_PER_LEVEL cells.
-float chermainLevelP22(ChermainLevel lv, ChermainSlope sl) {
-    if (lv.allSmooth) return sl.smoothP22;
-    float A = lv.ellipse.x, B = lv.ellipse.y, C = lv.ellipse.z;
-    float sum = 0.0, sumWeights = 0.0;
-    int cells = 0;
-    const float edge = exp(-2.0);
-    for (int it = lv.rows.x; it <= lv.rows.y && cells < CHERMAIN_MAX_CELLS_PER_LEVEL; ++it) {
-        float tt = float(it) - lv.st.y;
-        // A ss^2 + B tt ss + C tt^2 - 1 < 0: the row's span.
-        float disc = B * B * tt * tt - 4.0 * A * (C * tt * tt - 1.0);
-        if (disc <= 0.0) continue;
-        float root = sqrt(disc);
-        int s0 = int(ceil(lv.st.x + (-B * tt - root) / (2.0 * A)));
-        int s1 = int(floor(lv.st.x + (-B * tt + root) / (2.0 * A)));
-        for (int is = s0; is <= s1 && cells < CHERMAIN_MAX_CELLS_PER_LEVEL; ++is) {
-            float ss = float(is) - lv.st.x;
-            float r2 = A * ss * ss + B * ss * tt + C * tt * tt;
-            if (r2 >= 1.0) continue;
-            float weight = exp(-2.0 * r2) - edge;   // pbrt's EWA Gaussian, alpha = 2
-            sum += weight * chermainCellP22(sl, lv, ivec2(is, it));
-            sumWeights += weight;
-            ++cells;
-        }
+// Alg. 2: the cells of one level are the integer points inside the footprint's ellipse, weighted by pbrt's EWA
+// Gaussian (alpha = 2). The authors scan the ellipse's bounding box with a guard of 100 iterations, which for
+// rotated elongated footprints stops before the ellipse is covered; here each row visits only its span inside the
+// ellipse (the same cells and weights), with a guard of CHERMAIN_MAX_CELLS_PER_LEVEL cells. The two loops below
+// (glintSetup's caching, glintD's uncached levels) visit the same cells in the same order.
+#define CHERMAIN_FOR_EACH_CELL(lv, BODY)                                                                   \
+    {                                                                                                      \
+        float A_ = lv.ellipse.x, B_ = lv.ellipse.y, C_ = lv.ellipse.z;                                     \
+        int visited_ = 0;                                                                                  \
+        for (int it_ = lv.rows.x; it_ <= lv.rows.y && visited_ < CHERMAIN_MAX_CELLS_PER_LEVEL; ++it_) {   \
+            float tt_ = float(it_) - lv.st.y;                                                              \
+            float disc_ = B_ * B_ * tt_ * tt_ - 4.0 * A_ * (C_ * tt_ * tt_ - 1.0);                         \
+            if (disc_ <= 0.0) continue;                                                                    \
+            float root_ = sqrt(disc_);                                                                     \
+            int s0_ = int(ceil(lv.st.x + (-B_ * tt_ - root_) / (2.0 * A_)));                               \
+            int s1_ = int(floor(lv.st.x + (-B_ * tt_ + root_) / (2.0 * A_)));                              \
+            for (int is_ = s0_; is_ <= s1_ && visited_ < CHERMAIN_MAX_CELLS_PER_LEVEL; ++is_) {            \
+                float ss_ = float(is_) - lv.st.x;                                                          \
+                float r2_ = A_ * ss_ * ss_ + B_ * ss_ * tt_ + C_ * tt_ * tt_;                              \
+                if (r2_ >= 1.0) continue;                                                                  \
+                float weight = exp(-2.0 * r2_) - 0.13533528;                                               \
+                ivec2 cell = ivec2(is_, it_);                                                              \
+                ++visited_;                                                                                \
+                BODY                                                                                       \
+            }                                                                                              \
+        }                                                                                                  \
     }
-    g_chermainCells += cells;
+
+// The per-light P22 of a level: the EWA-weighted mean of its cells' NDFs (from the pixel's cached draws when the
+// level was cached, else drawn here).
+float chermainLevelP22(GlintPixel px, ChermainLevel lv, ChermainSlope sl) {
+    if (lv.allSmooth) return sl.smoothP22;
+    float sum = 0.0;
+    if (lv.cached >= 0) {
+        if (!(lv.sumWeights > 0.0)) return 0.0;
+        for (int k = 0; k < lv.cached; ++k) {
+            vec4 e = px.cells[lv.firstCached + k];
+            int code = int(e.w);
+            ChermainCell c = ChermainCell(false, code & 255, (code >> 8) & 255, code >> 16, e.y, e.z);
+            sum += e.x * chermainCellP22(sl, c);
+        }
+        g_chermainCells += lv.cached;
+        return sum / lv.sumWeights;
+    }
+    float sumWeights = 0.0;
+    CHERMAIN_FOR_EACH_CELL(lv, {
+        ChermainCell c = chermainDrawCell(lv, cell);
+        if (!c.empty) sum += weight * chermainCellP22(sl, c);
+        sumWeights += weight;
+        g_chermainCells += 1;
+    })
     return sumWeights > 0.0 ? sum / sumWeights : 0.0;
+}
+
+// glintSetup's part of Alg. 2-3 when several lights share it: each level's total EWA weight and the draws of its
+// non-empty cells while they fit the cache (a level that overflows it is drawn again per light).
+void chermainDrawLevels(inout GlintPixel px) {
+    int used = 0;
+    for (int k = 0; k < 2; ++k) {
+        ChermainLevel lv = px.levels[k];
+        lv.firstCached = used;
+        lv.cached = 0;
+        lv.sumWeights = 0.0;
+        float levelWeight = k == 0 ? 1.0 - px.blend : px.blend;
+        if (!lv.allSmooth && levelWeight > 0.0) {
+            CHERMAIN_FOR_EACH_CELL(lv, {
+                lv.sumWeights += weight;
+                if (lv.cached >= 0) {
+                    ChermainCell c = chermainDrawCell(lv, cell);
+                    if (c.empty) {
+                    } else if (used < CHERMAIN_CACHED_CELLS) {
+                        px.cells[used] = vec4(weight, c.ct, c.sn, float(c.lDist + 256 * c.i + 65536 * c.j));
+                        ++used;
+                        ++lv.cached;
+                    } else {
+                        used = lv.firstCached;
+                        lv.cached = -1;
+                    }
+                }
+            })
+        }
+        px.levels[k] = lv;
+    }
 }
 
 // 2021 Sec. 4: the screen-space derivatives of the half vector in the shading frame, from the surface's
@@ -341,8 +427,8 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     }
     // Alg. 1 line 8: the two levels, blended.
     float P = 0.0;
-    if (px.blend < 1.0) P += (1.0 - px.blend) * chermainLevelP22(px.levels[0], sl);
-    if (px.blend > 0.0) P += px.blend * chermainLevelP22(px.levels[1], sl);
+    if (px.blend < 1.0) P += (1.0 - px.blend) * chermainLevelP22(px, px.levels[0], sl);
+    if (px.blend > 0.0) P += px.blend * chermainLevelP22(px, px.levels[1], sl);
     // Eq. 6 (Alg. 1 line 10).
     return max(P, 0.0) / cos4;
 }
