@@ -251,7 +251,7 @@ int countPeaks(const std::vector<float>& v, int n, float floor) {
 
 // The shader's texture is the table (level 0 within half-float rounding, 1e-3 relative; every mip normalized like
 // the table, 2 h_k sum = 1 within 2e-3) and the GLSL constants are the generator's spec.
-TEST(Chermain2020Dictionary, TextureIsTheTableAndShaderConstantsTheSpec) {
+TEST(Chermain2020Texture, TextureIsTheTableAndShaderConstantsTheSpec) {
     auto context = makeContext();
     const ch::Dictionary& d = defaultDictionary();
     const ch::DictionarySpec& spec = d.spec;

@@ -25,10 +25,10 @@
 #include "glints/methods.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/environment.h"
+#include "environment/environment.h"
 #include "reference/environment_reference.h"
 #include "render/gpu_scene.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 #include "reference/ibl_sampling_reference.h"
 #include "render/renderer.h"
 #include "render/settings.h"
@@ -126,7 +126,7 @@ TEST(Kemppinen2025Ibl, CpuEstimatorMatchesQuadrature) {
 
 namespace {
 
-// The compute shader shaders/ibl/ibl_estimator_test.glsl with the method and mode of `settings`.
+// The compute shader shaders/environment/ibl/ibl_estimator_test.glsl with the method and mode of `settings`.
 class EstimatorRig {
 public:
     EstimatorRig() : context_(createHeadlessContext(Backend::Egl)), env_(defaultShaderDir()) {
@@ -151,7 +151,7 @@ public:
         ParamValues methodValues{{"micro_roughness", float(c.micro)}, {"density", 2e6f}};
         gl::ProgramDesc desc;
         desc.name = "ibl estimator test/" + iblMode;
-        desc.stages = {{GL_COMPUTE_SHADER, "ibl/ibl_estimator_test.glsl"}};
+        desc.stages = {{GL_COMPUTE_SHADER, "environment/ibl/ibl_estimator_test.glsl"}};
         desc.defines = {method.define, mode.define};
         desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(mode);
         desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
@@ -331,10 +331,8 @@ public:
             renderer = std::make_unique<Renderer>(defaultShaderDir(), settings);
         else
             renderer->setSettings(settings);
-        for (int i = 0; i < spp; ++i) {
-            renderer->setSampleIndex(uint32_t(i));
-            renderer->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
-        }
+        View view{.camera = scene_.cameras.front(), .width = size, .height = size};
+        renderer->renderAccumulated(scene_, *gpuScene_, view, spp);
         glFinish();
         return renderer->readHdr();
     }
@@ -478,8 +476,7 @@ TEST(Kemppinen2025Ibl, RenderedSampleMatchesCpuEstimatorPerPixel) {
         RenderSettings s = settings;
         s.debugView = findAov(aov).viewId;
         renderer->setSettings(s);
-        renderer->setSampleIndex(0);
-        renderer->render(scene, *gpuScene, scene.cameras.front(), size, size);
+        renderer->renderView(scene, *gpuScene, scene.cameras.front(), size, size);
         glFinish();
         return renderer->readHdr();
     };

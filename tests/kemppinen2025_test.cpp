@@ -17,7 +17,7 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/glint_mapping.h"
-#include "glints/method_checks.h"
+#include "checks/method_checks.h"
 #include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
@@ -67,7 +67,7 @@ public:
             renderer_ = std::make_unique<Renderer>(defaultShaderDir(), settings);
         else
             renderer_->setSettings(settings);
-        renderer_->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
+        renderer_->renderView(scene_, *gpuScene_, scene_.cameras.front(), size, size);
         glFinish();
         return renderer_->readHdr();
     }
@@ -206,8 +206,8 @@ static void expectShaderMatchesCpu(GlintRig& rig, const RenderSettings& settings
             s.uv = {uv[4 * i], uv[4 * i + 1]};
             s.duvdx = {dx[4 * i], dx[4 * i + 1]};
             s.duvdy = {dy[4 * i], dy[4 * i + 1]};
-            s.alpha = settings.common_("material.alpha");
-            s.ndf = int(settings.common_("material.ndf"));
+            s.alpha = settings.value(param::material_alpha);
+            s.ndf = int(settings.value(param::material_ndf));
             glm::dvec3 p = planePoint(camera, size, x + 0.5, y + 0.5);
             s.position = p;
             s.normal = {0, 1, 0};
@@ -291,7 +291,7 @@ static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const s
     return g;
 }
 
-// check-method's finite rule (40,824 footprints x angles x roughnesses, engine/glints/method_checks.cpp) once
+// check-method's finite rule (40,824 footprints x angles x roughnesses, engine/checks/method_checks.cpp) once
 // found 780 NaN and then one Inf: duv/dx about 1e4 UV with nearly parallel derivatives made det(Sigma_s) round
 // to zero or below, and the quadratic form of its nearly singular inverse negative. Every value must be finite.
 TEST(Kemppinen2025, FiniteAtDegenerateHugeFootprints) {
@@ -597,7 +597,7 @@ void runSamplingCase(const SamplingCase& c) {
     ParamValues values{{"micro_roughness", float(c.micro)}, {"density", 2e6f}};
     gl::ProgramDesc desc;
     desc.name = "kemppinen2025 sampling test";
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/kemppinen2025_sampling_test.glsl"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/kemppinen2025/kemppinen2025_sampling_test.glsl"}};
     desc.preamble = methodParamsGlsl(method);
     gl::Program program(defaultShaderDir(), desc);
     std::vector<float> packed = packMethodParams(method, values);

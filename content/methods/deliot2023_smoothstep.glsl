@@ -30,7 +30,7 @@ map: microfacet_roughness = (angular_size)^2 alpha^-2
 // replaced by the one below (the same loop with other weights). `resources: deliot2023` borrows the built-in's
 // random-number texture (Sec. 6.3), which its helpers read.
 #define glintD deliot2023GlintD
-#include "glints/deliot2023.glsl"
+#include "glints/deliot2023/deliot2023.glsl"
 #undef glintD
 
 vec4 angularBlendWeights(vec2 f) {

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::bench {
 

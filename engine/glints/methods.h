@@ -2,7 +2,7 @@
 // it in the lighting program, its parameters (defaults, ranges, meanings) and the paper it implements.
 // Adding a built-in method: write shaders/glints/<name>.glsl with the interface documented in
 // shaders/glints/README.md, add a function returning its GlintMethod below and list it in glintMethods().
-// User methods (--method-file, glints/user_methods.h) are entries of the same table read from one GLSL file's
+// User methods (--method-file, glints/user/user_methods.h) are entries of the same table read from one GLSL file's
 // header block at run time: everything that lists or finds methods sees them like the built-ins.
 #pragma once
 #include <filesystem>
@@ -43,8 +43,8 @@ struct MethodPassFrame {
     // Weight of this frame's radiance in the HDR mean: 1, or 1 / (k + 1) for sample k of an accumulating IBL mode.
     float blendWeight = 1.0f;
     unsigned hdrFramebuffer = 0;           // the HDR radiance target, where the pass adds its result
-    unsigned glintEnvironment = 0;         // the lighting pass's glint targets (GlintMethod::glintPostPass)
-    unsigned glintLights = 0;
+    // The method's lighting targets (GlintMethod::lightingTargets, in that order) as the lighting pass wrote them.
+    std::vector<unsigned> lightingTargets;
     unsigned depth = 0;                    // the G-buffer's depth (reversed Z)
     unsigned emptyVao = 0;                 // bound for full-screen triangles
 };
@@ -62,11 +62,18 @@ public:
 };
 using MethodPassList = std::vector<std::unique_ptr<MethodPass>>;
 
+// A target the lighting pass writes for the method (GlintMethod::lightingTargets): its name (debug label) and
+// internal format, at the render size.
+struct MethodTarget {
+    std::string name;
+    GLenum format = GL_RGBA32F;
+};
+
 struct GlintMethod {
     std::string id;           // command-line name, e.g. "deliot2023"
     std::string title;        // display name
     std::string define;       // e.g. "GLINT_METHOD_DELIOT2023"
-    std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023.glsl"
+    std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023/deliot2023.glsl"
     std::string citation;     // paper reference
     std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
     // Optional: creates the method's GPU resources (called with a current context).
@@ -74,10 +81,12 @@ struct GlintMethod {
     // Optional: the method's passes after the lighting pass (built with a current context from the shader root;
     // throws gl::ShaderError like any program build).
     std::function<MethodPassList(const std::filesystem::path& shaderRoot)> createPasses;
-    // The lighting pass writes the method's glint radiance and its directional occlusion to separate targets
-    // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
-    // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
-    bool glintPostPass = false;
+    // Targets the lighting pass writes for the method besides the radiance, at locations 2.. in this order, which
+    // its passes read (MethodPassFrame::lightingTargets). The method's shader then declares those outputs and the
+    // hooks of shaders/glints/README.md ("Lighting targets"; the lighting program is compiled with
+    // GLINT_METHOD_TARGETS): wang2020 keeps its glint radiance and directional occlusion out of the radiance so that
+    // its Sec. 4.4 passes can blur them and add them. At most 6 (8 draw buffers).
+    std::vector<MethodTarget> lightingTargets;
     // The lighting pass fills GlintSurface's screen-space derivatives of the position and the shading normal and
     // sets g_glintLightDistance per light (GLINT_SURFACE_DERIVATIVES; shaders/common/glint_surface.glsl), for
     // methods that filter over the pixel's range of half vectors (Chermain et al. 2021's anti-aliasing).
@@ -94,7 +103,7 @@ struct GlintMethod {
     // densest material's tree), or the first glinty material when empty. Shaders read those values as PS_<NAME>.
     std::string sharedDataMaterial;
     // Parameter values at which the method must render like `smooth` ("very high density"): the convergence
-    // rule of check-method (glints/method_checks.h). Empty: the method declares none.
+    // rule of check-method (checks/method_checks.h). Empty: the method declares none.
     ParamValues convergence;
     // User methods only: the GLSL file the entry was read from (canonical; shaderFile is the same path) and the
     // built-in whose GPU resources it borrows ("" = none). Built-ins leave both empty.

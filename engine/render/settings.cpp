@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "glints/methods.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 
 namespace glimmer {
 
@@ -81,7 +81,7 @@ const std::vector<CommonParam>& commonParams() {
           "1: exposure from the luminance histogram (exposure=auto); `exposure` then adds stops", {}, true}},
         {{"tonemap", 0.0f, 0.0f, 2.0f, "tone curve: aces (Narkowicz fit), neutral (Khronos PBR Neutral), agx",
           {"aces", "neutral", "agx"}}},
-        // Reflection probes (render/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
+        // Reflection probes (render/probes/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
         // say so (IblMode::readsProbes): prefiltered, ndf-is, glint-is, wang2020.
         {{"probes.enabled", 1.0f, 0.0f, 1.0f,
           "1: metallic objects reflect the scene around them (reflection probes, captured when the scene changes)",
@@ -104,7 +104,7 @@ const std::vector<CommonParam>& commonParams() {
         {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
         {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
         {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
-        // Shadows (render/shadow_maps.h, docs/shadows.md).
+        // Shadows (render/shadows/shadow_maps.h, docs/shadows.md).
         {{"shadow.enabled", 1.0f, 0.0f, 1.0f, "shadow maps for the sun (cascades) and point lights (cube faces), 0 or 1",
           {}, true}},
         {{"shadow.map_size", 2048.0f, 256.0f, 4096.0f, "texels per side of each sun cascade", {}, true}},
@@ -131,9 +131,9 @@ static const CommonParam* findCommon(const std::string& name) {
     return nullptr;
 }
 
-float RenderSettings::common_(const std::string& name) const {
-    const CommonParam* p = findCommon(name);
-    if (!p) throw Error("internal: unknown common parameter " + name);
+float RenderSettings::value(CommonParamKey key) const {
+    const CommonParam* p = findCommon(key.name);
+    if (!p) throw Error(std::string("internal: unknown common parameter ") + key.name);
     return paramOr(common, p->spec);
 }
 
@@ -196,25 +196,25 @@ void RenderSettings::apply(const std::string& assignment) {
 
 void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
     for (Material& m : scene.materials) {
-        if (settings.isSet("material.alpha")) m.alpha = settings.common_("material.alpha");
-        if (settings.isSet("material.metallic")) m.metallic = settings.common_("material.metallic");
-        if (settings.isSet("material.ndf")) m.ndf = static_cast<NdfType>(int(settings.common_("material.ndf")));
-        if (settings.isSet("material.glinty")) m.glinty = settings.common_("material.glinty") > 0.5f;
-        if (settings.isSet("material.density_scale"))
-            m.glintDensityScale = settings.common_("material.density_scale");
-        if (settings.isSet("material.glint_density")) m.glint.density = settings.common_("material.glint_density");
-        if (settings.isSet("material.glint_angular_size"))
-            m.glint.angularSize = settings.common_("material.glint_angular_size");
-        if (settings.isSet("material.glint_anisotropy")) m.glint.anisotropy = settings.common_("material.glint_anisotropy");
-        if (settings.isSet("material.glint_color_variation"))
-            m.glint.colorVariation = settings.common_("material.glint_color_variation");
-        if (settings.isSet("material.clearcoat")) m.clearcoat = settings.common_("material.clearcoat");
-        if (settings.isSet("material.clearcoat_roughness"))
-            m.clearcoatRoughness = settings.common_("material.clearcoat_roughness");
+        if (settings.isSet(param::material_alpha)) m.alpha = settings.value(param::material_alpha);
+        if (settings.isSet(param::material_metallic)) m.metallic = settings.value(param::material_metallic);
+        if (settings.isSet(param::material_ndf)) m.ndf = static_cast<NdfType>(int(settings.value(param::material_ndf)));
+        if (settings.isSet(param::material_glinty)) m.glinty = settings.value(param::material_glinty) > 0.5f;
+        if (settings.isSet(param::material_density_scale))
+            m.glintDensityScale = settings.value(param::material_density_scale);
+        if (settings.isSet(param::material_glint_density)) m.glint.density = settings.value(param::material_glint_density);
+        if (settings.isSet(param::material_glint_angular_size))
+            m.glint.angularSize = settings.value(param::material_glint_angular_size);
+        if (settings.isSet(param::material_glint_anisotropy)) m.glint.anisotropy = settings.value(param::material_glint_anisotropy);
+        if (settings.isSet(param::material_glint_color_variation))
+            m.glint.colorVariation = settings.value(param::material_glint_color_variation);
+        if (settings.isSet(param::material_clearcoat)) m.clearcoat = settings.value(param::material_clearcoat);
+        if (settings.isSet(param::material_clearcoat_roughness))
+            m.clearcoatRoughness = settings.value(param::material_clearcoat_roughness);
     }
-    float scale = settings.common_("light.intensity");
+    float scale = settings.value(param::light_intensity);
     for (Light& light : scene.lights) light.intensity *= scale;
-    int wanted = int(settings.common_("light.count"));
+    int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
         Light first = scene.lights.front();
@@ -230,7 +230,7 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
             scene.lights.push_back(extra);
         }
     }
-    if (float turn = settings.common_("light.turn"); turn != 0.0f) {
+    if (float turn = settings.value(param::light_turn); turn != 0.0f) {
         const float c = std::cos(turn), s = std::sin(turn);
         auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
         for (Light& light : scene.lights) {

@@ -1,5 +1,5 @@
 // KHR_lights_punctual's recommended falloffs (the extension's README, "Range Property" and "Spot"), on the CPU
-// for tests and documentation; shaders/lighting.frag evaluates the same formulas per pixel.
+// for tests and documentation; shaders/frame/lighting.frag evaluates the same formulas per pixel.
 #include <algorithm>
 #include <cmath>
 

@@ -6,7 +6,7 @@
 
 #include "core/files.h"
 #include "render/aov.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 #include "ui/font.h"
 
 namespace glimmer::ui {
@@ -173,8 +173,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
         for (const CommonParam& p : commonParams()) {
             if (sectionOfPrefix(prefixOf(p.spec.name)) != group || panelHidesParameter(p.spec.name)) continue;
-            bool fromScene = p.sceneDefault && !settings.isSet(p.spec.name);
-            float value = settings.common_(p.spec.name);
+            bool fromScene = p.sceneDefault && !settings.isSet({p.spec.name.c_str()});
+            float value = settings.value({p.spec.name.c_str()});
             Edit edit = ui.slider(p.spec.name, p.spec, value, fromScene ? "scene" : nullptr);
             if (edit == Edit::Changed) settings.common[p.spec.name] = value;
             if (edit == Edit::Reset) settings.common.erase(p.spec.name);
@@ -182,7 +182,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
     }
 
-    // Environment integration: the IBL mode selector and the mode's own parameters (ibl/ibl_modes.h).
+    // Environment integration: the IBL mode selector and the mode's own parameters (environment/ibl/ibl_modes.h).
     if (ui.section("Environment integration (I)")) {
         std::vector<std::string> modes;
         int modeIndex = 0;

@@ -1,0 +1,395 @@
+// Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
+// Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
+// metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+// main() reads the pixel's surface, then adds the environment term, the clear coat's environment lobe and the
+// lights, and writes the radiance or the debug view; each step is one function below.
+#include "common/bindings.glsl"
+#define GLIMMER_LIGHTING_PASS 1   // lets method files read lighting-pass data (u_materials) that probes lack
+#include "common/frame.glsl"
+#include "common/brdf.glsl"
+#include "common/footprint.glsl"
+#include "common/glint_surface.glsl"
+#include "environment/prefiltered_lookup.glsl"
+#include "common/clearcoat.glsl"
+#include "common/light_incidence.glsl"
+#include "common/plane_aware_upsample.glsl"
+#ifdef SHADOWS
+#include "shadows/shadows.glsl"
+#endif
+
+vec3 finiteOrZero(vec3 c) {
+    bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
+    return any(bad) ? vec3(0.0) : c;
+}
+
+// A method with lighting targets of its own (GLINT_METHOD_TARGETS; shaders/glints/README.md, "Lighting targets")
+// declares them at locations 2.. and the hooks glintTakeLightGlint, glintScaleTargets and glintWriteTargets.
+#include GLINT_METHOD_FILE
+#include IBL_MODE_FILE
+
+layout(binding = UNIT_GBUFFER_UV_DUVDX) uniform sampler2D g_uvDuvdx;
+layout(binding = UNIT_GBUFFER_DUVDY_MATERIAL) uniform sampler2D g_duvdyMaterial;
+layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
+layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
+layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
+layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+layout(binding = UNIT_GBUFFER_CLEARCOAT) uniform sampler2D g_clearcoat;   // KHR_materials_clearcoat (gbuffer.frag)
+// rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
+layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
+#ifdef GLINT_SLOPE_COVARIANCE
+// G-buffer target 6: the LEAN-filtered normal map's slope covariance (GlintMethod::slopeCovariance).
+layout(binding = UNIT_GBUFFER_SLOPE_COVARIANCE) uniform sampler2D g_slopeCovariance;
+#endif
+
+in vec2 v_ndc;
+layout(location = 0) out vec4 o_color;
+// The part of o_color that is the lights' specular on glinty materials: the TAA resolve keeps it out of its
+// neighbourhood clipping (shaders/image/taa_resolve.frag). Written only where TAA attaches a target.
+layout(location = 1) out vec4 o_glintPart;
+
+// TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
+// position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
+vec3 tangentPlanePoint(vec2 screen, vec3 anchor, vec3 n) {
+    vec2 ndc = screen / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 near = u_inverseViewProjection * vec4(ndc, 1.0, 1.0);   // reversed Z: depth 1 is the near plane
+    vec3 direction = normalize(near.xyz / near.w - u_cameraPosition.xyz);
+    float cosine = dot(direction, n);
+    if (abs(cosine) < 1e-3) return anchor;
+    float t = dot(anchor - u_cameraPosition.xyz, n) / cosine;
+    return t > 0.0 ? u_cameraPosition.xyz + direction * t : anchor;
+}
+
+// Moves the glint footprint of a jittered pixel to its unjittered centre. The jittered image is the unjittered one
+// moved by u_jitter.xy pixels, so that centre lies at pixel + 0.5 + u_jitter.xy here. The UV is taken as an affine
+// map of the tangent plane (exact for planar mappings), fitted to the G-buffer's derivatives at the jittered centre;
+// the unjittered centre and its one-pixel neighbours then give the UV, its derivatives (which change across the
+// screen under perspective: at grazing angles a half-pixel shift changes the footprint by 10-20%) and the position.
+void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
+    vec2 centre = vec2(s.pixel) + 0.5;
+    vec3 p = tangentPlanePoint(centre, position, s.n);
+    vec3 dx = tangentPlanePoint(centre + vec2(1.0, 0.0), position, s.n) - p;
+    vec3 dy = tangentPlanePoint(centre + vec2(0.0, 1.0), position, s.n) - p;
+    mat2 planeDerivatives = mat2(vec2(dot(dx, s.t), dot(dx, s.b)), vec2(dot(dy, s.t), dot(dy, s.b)));
+    if (abs(determinant(planeDerivatives)) < 1e-12) return;
+    mat2 planeToUv = mat2(s.duvdx, s.duvdy) * inverse(planeDerivatives);
+    vec2 moved = centre + u_jitter.xy;
+    vec3 q = tangentPlanePoint(moved, position, s.n);
+    vec3 qx = tangentPlanePoint(moved + vec2(1.0, 0.0), position, s.n) - q;
+    vec3 qy = tangentPlanePoint(moved + vec2(0.0, 1.0), position, s.n) - q;
+    s.uv += planeToUv * vec2(dot(q - p, s.t), dot(q - p, s.b));
+    s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
+    s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
+    position = q;
+}
+
+#ifdef GLINT_SURFACE_DERIVATIVES
+// For methods that filter their NDF over the pixel's range of half vectors (GlintMethod::surfaceDerivatives;
+// Chermain et al. 2021, Sec. 4): the screen-space derivatives of the surface, which a full-screen pass cannot take
+// with dFdx. Of the two neighbours along each axis the one nearer the pixel's tangent plane (|offset . n| over
+// |offset| below 0.5) gives a one-sided difference of the G-buffer's position and shading normal; across an edge
+// (no such neighbour) the position moves in the tangent plane and the normal does not change.
+void glintSurfaceDerivatives(inout GlintSurface s, ivec2 pixel, vec3 gbufferPosition, vec3 position) {
+    s.viewDistance = distance(u_cameraPosition.xyz, position);
+    vec2 centre = vec2(pixel) + 0.5;
+    vec3 planeCentre = tangentPlanePoint(centre, position, s.n);
+    for (int axis = 0; axis < 2; ++axis) {
+        ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+        vec3 dp = tangentPlanePoint(centre + vec2(step), position, s.n) - planeCentre;
+        vec3 dn = vec3(0.0);
+        float best = 0.5;
+        for (int side = -1; side <= 1; side += 2) {
+            ivec2 q = pixel + side * step;
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_viewport.xy))) continue;
+            float d = texelFetch(g_depth, q, 0).r;
+            if (d <= 0.0) continue;
+            vec3 offset = worldPosition(q, d) - gbufferPosition;
+            float deviation = abs(dot(offset, s.n)) / max(length(offset), 1e-20);
+            if (deviation < best) {
+                best = deviation;
+                dp = float(side) * offset;
+                dn = float(side) * (normalize(texelFetch(g_normalAlpha, q, 0).xyz) - s.n);
+            }
+        }
+        if (axis == 0) { s.dpdx = dp; s.dndx = dn; } else { s.dpdy = dp; s.dndy = dn; }
+    }
+}
+#endif
+
+// The pixel as the G-buffer holds it (layout in frame/gbuffer.frag), with what the shading needs of its material.
+struct PixelSurface {
+    GlintSurface s;
+    bool glinty;
+    vec3 gbufferPosition;   // at the G-buffer's own (possibly jittered) pixel centre
+    vec3 position;          // where the pixel is shaded (moved for glints by TAA's unjittering)
+    vec3 baseColor;
+    float metallic;
+    int materialId;
+};
+
+PixelSurface readPixelSurface(ivec2 pixel, float depth) {
+    vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
+    vec4 duvdyMaterial = texelFetch(g_duvdyMaterial, pixel, 0);
+    vec4 normalAlpha = texelFetch(g_normalAlpha, pixel, 0);
+    vec4 tangentMetallic = texelFetch(g_tangentMetallic, pixel, 0);
+    vec4 baseColorMask = texelFetch(g_baseColorMask, pixel, 0);
+
+    PixelSurface p;
+    p.materialId = int(duvdyMaterial.z + 0.5);
+    GpuMaterial material = u_materials[p.materialId];
+    g_glintMaterial = p.materialId;   // the method's P_<NAME> read this material's parameters
+    p.s.uv = uvDuvdx.xy;
+    p.s.duvdx = uvDuvdx.zw;
+    p.s.duvdy = duvdyMaterial.xy;
+    p.s.alpha = normalAlpha.w;
+    p.s.ndf = int(material.alphaMetallicNdfGlinty.z + 0.5);
+    p.s.densityScale = material.densityCutoff.x * baseColorMask.a;
+    p.s.materialId = p.materialId;
+    p.s.pixel = pixel;
+    p.s.n = normalize(normalAlpha.xyz);
+    p.s.t = normalize(tangentMetallic.xyz - p.s.n * dot(p.s.n, tangentMetallic.xyz));
+    p.s.b = duvdyMaterial.w * cross(p.s.n, p.s.t);
+    clearGlintSurfaceExtras(p.s);
+#ifdef NON_GLINTY_PIXELS
+    // The pixels lighting_class.frag did not mark glinty (render/frame/lighting_pass.h): the compiler drops the
+    // method's code, and every other term is this shader's own.
+    p.glinty = false;
+#else
+    p.glinty = material.alphaMetallicNdfGlinty.w > 0.5;
+#endif
+    p.gbufferPosition = worldPosition(pixel, depth);
+    p.position = p.gbufferPosition;
+    // TAA jitters the projection by u_jitter.xy pixels. Glint methods filter their NDF over the pixel footprint
+    // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
+    // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
+    // second time and lose its peak (docs/image.md, "glints"). So with taa.stable_glints a glinty pixel is shaded
+    // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
+    // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
+    // geometric edges of glinty surfaces are still anti-aliased.
+    if (p.glinty && u_jitter.z > 0.5) unjitterGlintFootprint(p.s, p.position);
+    p.s.position = p.position;
+#if defined(GLINT_SLOPE_COVARIANCE) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) p.s.slopeCovariance = texelFetch(g_slopeCovariance, pixel, 0).xyz;
+#endif
+#if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) glintSurfaceDerivatives(p.s, pixel, p.gbufferPosition, p.position);
+#endif
+    p.baseColor = baseColorMask.rgb;
+    p.metallic = tangentMetallic.w;
+    return p;
+}
+
+// Ambient occlusion of the environment term (docs/ambient_occlusion.md): rgb the factor, a the visibility. At
+// ao.half_res the factor is interpolated from every second pixel (common/plane_aware_upsample.glsl); the taps are
+// shared with the shadow mask when both run at half resolution (`maskTaps`, valid when `maskTapsValid`).
+vec4 ambientOcclusion(PixelSurface p, UpsampleTaps maskTaps, bool maskTapsValid) {
+    ivec2 aoSize = textureSize(u_ambientOcclusion, 0);
+    int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;   // AmbientOcclusion::step(): a halved target is ceil(w / 2) wide
+    if (aoSize == ivec2(1)) return texelFetch(u_ambientOcclusion, ivec2(0), 0);   // white: AO off
+    if (aoStep == 1) return texelFetch(u_ambientOcclusion, p.s.pixel, 0);
+    UpsampleTaps aoTaps;
+    bool sharedTaps = false;
+#ifdef SHADOWS
+    sharedTaps = maskTapsValid && u_shadowMask.x == aoStep;
+    if (sharedTaps) aoTaps = maskTaps;
+#endif
+    if (!sharedTaps)
+        aoTaps = planeAwareTaps(p.s.pixel, p.gbufferPosition, p.s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
+    vec4 occlusion = vec4(0.0);
+    for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
+    return occlusion / aoTaps.total;
+}
+
+// The clear coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror direction,
+// from the prefiltered map and the reflection probes where the frame binds them (count 0 otherwise); GGX table with
+// F0 = 1 (the Fresnel is in the weight). Without an environment the constant ambient is reflected with the lobe's
+// albedo taken as 1.
+vec3 clearcoatEnvironment(Clearcoat coat, vec3 position, vec3 toEye) {
+    vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
+    if (envEnabled()) {
+        vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
+        coatEnvironment = envPrefilteredAt(position, reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
+    }
+    return coatEnvironment;
+}
+
+// What the lights add besides the radiance: the parts other targets and the debug views need.
+struct LightSum {
+    vec3 glintPart;         // the lights' specular on glinty pixels (inside radiance; TAA's glint part)
+    float firstLightD;      // the glint AOV: D of light 0
+    float firstLightVisibility;
+};
+
+// Adds every light's diffuse and specular to `radiance` (the base layer) and its coat lobe to `coatRadiance`.
+LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3 toEye, vec3 wo, vec3 diffuseAlbedo,
+                     vec3 f0, Clearcoat coat, UpsampleTaps maskTaps, inout vec3 radiance, inout vec3 coatRadiance) {
+    LightSum sum;
+    sum.glintPart = vec3(0.0);
+    sum.firstLightD = 0.0;
+    sum.firstLightVisibility = 0.0;
+    GlintSurface s = p.s;
+    bool coated = coat.weight > 0.0;
+    int view = u_viewport.w;
+    int lightCount = int(u_exposure.y);
+#ifdef SHADOWS
+    vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
+    // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
+    shadowMaskVisibility(s.pixel, maskTaps, maskVisibility);
+#endif
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 towardLight, irradiance;
+        lightIncidence(u_lights[i], p.position, towardLight, irradiance);
+        vec3 wi = worldToShading * towardLight;
+        // A coated pixel may see a light through its coat that its (normal-mapped) base faces away from.
+        bool coatLit = coated && dot(coat.n, towardLight) > 0.0 && coat.nDotV > 0.0;
+        if ((wi.z <= 0.0 || wo.z <= 0.0) && !coatLit) continue;
+        // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
+        // (shadows/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
+#ifdef SHADOWS
+        // From the shadow mask (render/shadows/shadow_mask_pass.h: the maps are filtered there, at a quarter of the
+        // pixels by default).
+        float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+        float visibility = 1.0;   // shadow.enabled=0 (render/frame/lighting_pass.h)
+#endif
+        if (i == 0) sum.firstLightVisibility = visibility;
+        if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
+        irradiance *= visibility;
+        if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
+        if (wi.z <= 0.0 || wo.z <= 0.0) continue;
+        vec3 h = normalize(wi + wo);
+#ifdef GLINT_SURFACE_DERIVATIVES
+        g_glintLightDistance = u_lights[i].vectorType.w < 0.5 ? 0.0 : distance(u_lights[i].vectorType.xyz, p.position);
+#endif
+#ifdef GLINT_COLOR_D
+        // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
+        vec3 colorD = p.glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        float D = dot(colorD, vec3(1.0 / 3.0));
+        vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
+#else
+        float D = p.glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
+#endif
+        if (i == 0) sum.firstLightD = D;
+#ifdef GLINT_METHOD_TARGETS
+        // The method keeps its light glints in its own target (its passes add them later).
+        if (p.glinty && glintTakeLightGlint(specular * irradiance * wi.z)) specular = vec3(0.0);
+#else
+        if (p.glinty) sum.glintPart += specular * irradiance * wi.z;
+#endif
+        radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
+    }
+    return sum;
+}
+
+// --aov views (render/aov.h).
+vec4 debugView(int view, PixelSurface p, GlintPixel glint, vec3 radiance, LightSum lights, vec4 occlusion,
+               vec4 coatTexelView) {
+    GlintSurface s = p.s;
+    switch (view) {
+        case VIEW_ALBEDO: return vec4(p.baseColor, 1.0);
+        case VIEW_NORMAL: return vec4(s.n, 1.0);
+        case VIEW_DEPTH: return vec4(vec3(distance(p.position, u_cameraPosition.xyz)), 1.0);
+        case VIEW_UV: return vec4(s.uv, 0.0, 1.0);
+        case VIEW_DUVDX: return vec4(s.duvdx, 0.0, 1.0);
+        case VIEW_DUVDY: return vec4(s.duvdy, 0.0, 1.0);
+        case VIEW_GLINT: return vec4(vec3(lights.firstLightD), 1.0);
+        case VIEW_FOOTPRINT: return glintFootprintAOV(glint, s);
+        case VIEW_TANGENT: return vec4(s.t, 1.0);
+        case VIEW_ROUGHNESS_METALLIC: return vec4(s.alpha, p.metallic, float(p.materialId), 1.0);
+        case VIEW_EXTRA: return glintExtraAOV(glint, s);
+        case VIEW_AO: return vec4(vec3(occlusion.a), 1.0);
+        case VIEW_SHADOW: return vec4(vec3(lights.firstLightVisibility), 1.0);
+        case VIEW_CLEARCOAT: return coatTexelView;
+        default: return vec4(radiance, 1.0);
+    }
+}
+
+// A pixel where nothing was drawn (reversed-Z clear value): the environment's radiance along the view ray (through
+// the near plane, depth 1), else the sky colour.
+void writeBackground(ivec2 pixel, int view) {
+    vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
+                            : u_skyColor.rgb;
+    o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
+    o_glintPart = vec4(0.0);
+#ifdef GLINT_METHOD_TARGETS
+    glintWriteTargets(false, false);
+#endif
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(g_depth, pixel, 0).r;
+    int view = u_viewport.w;
+    if (depth <= 0.0) {
+        writeBackground(pixel, view);
+        return;
+    }
+    PixelSurface p = readPixelSurface(pixel, depth);
+    vec3 toEye = normalize(u_cameraPosition.xyz - p.position);
+    mat3 worldToShading = transpose(mat3(p.s.t, p.s.b, p.s.n));
+    vec3 wo = worldToShading * toEye;
+    vec3 f0 = mix(vec3(0.04), p.baseColor, p.metallic);
+    vec3 diffuseAlbedo = (1.0 - p.metallic) * p.baseColor;
+
+    // KHR_materials_clearcoat (common/clearcoat.glsl): the coat's own lobe goes to coatRadiance; the base radiance
+    // (all of it, the method's glints included) is scaled by 1 - weight at the end. Uncoated pixels (weight 0)
+    // skip both, so their radiance is the uncoated shader's bit for bit.
+    vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
+    Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
+    vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
+    bool coated = coat.weight > 0.0;
+
+    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
+    // non-glinty variant never reads it (its debug views are not split off: render/frame/lighting_pass.h).
+#ifdef NON_GLINTY_PIXELS
+    GlintPixel glint;
+#else
+    GlintPixel glint = glintSetup(p.s);
+#endif
+
+    // The shadow mask's interpolation taps, at the G-buffer's own position as the mask's samples.
+    UpsampleTaps maskTaps;
+    bool maskTapsValid = false;
+#ifdef SHADOWS
+    if (u_shadowMask.x != 1) {
+        maskTaps = planeAwareTaps(pixel, p.gbufferPosition, p.s.n, g_depth, u_viewport.xy, u_shadowMask.x,
+                                  shadowMaskLastTexel());
+        maskTapsValid = true;
+    }
+#endif
+    // Environment lighting by the selected IBL mode (shaders/environment/ibl/README.md), or the constant ambient
+    // when the environment is off (--env none). Ambient occlusion darkens this term only, never the lights.
+    vec4 occlusion = ambientOcclusion(p, maskTaps, maskTapsValid);
+    // A method may widen the roughness the environment sees (GLINT_ENVIRONMENT_ALPHA, shaders/glints/README.md:
+    // Chermain et al. 2021 light the environment with the LEAN-filtered roughness).
+    GlintSurface environmentSurface = p.s;
+#if defined(GLINT_ENVIRONMENT_ALPHA) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) environmentSurface.alpha = glintEnvironmentAlpha(glint, p.s);
+#endif
+    vec3 radiance = occlusion.rgb * (envEnabled()
+        ? iblRadiance(glint, environmentSurface, wo, toEye, worldToShading, diffuseAlbedo, f0, p.glinty, u_sample.x)
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
+    vec3 coatRadiance = vec3(0.0);
+    if (coated) coatRadiance += occlusion.rgb * coat.weight * clearcoatEnvironment(coat, p.position, toEye);
+
+    LightSum lights = shadeLights(p, glint, worldToShading, toEye, wo, diffuseAlbedo, f0, coat, maskTaps, radiance,
+                                  coatRadiance);
+    vec3 glintPart = lights.glintPart;
+    if (coated) {
+        float baseShare = 1.0 - coat.weight;
+        radiance = radiance * baseShare + coatRadiance;
+        glintPart *= baseShare;
+#ifdef GLINT_METHOD_TARGETS
+        glintScaleTargets(baseShare);
+#endif
+    }
+
+    vec4 result = debugView(view, p, glint, radiance, lights, occlusion, coatTexelView);
+    o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+    // Methods with lighting targets add their (blurred) glints after this pass: TAA clips them with the rest.
+    bool finiteResult = all(equal(o_color.rgb, result.rgb));
+    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
+#ifdef GLINT_METHOD_TARGETS
+    glintWriteTargets(p.glinty, view == VIEW_FINAL);
+#endif
+}
