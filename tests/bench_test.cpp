@@ -66,6 +66,7 @@ void expectDerivedFiguresPositiveAndFinite(const nlohmann::json& derived) {
         EXPECT_GE(d["stability_max_over_min"].get<double>(), 1.0);
         EXPECT_TRUE(positiveFinite(d["anisotropy_plane25_over_plane90"]));
         EXPECT_TRUE(positiveFinite(d["speedup_over_zirr2016"]));
+        EXPECT_TRUE(positiveFinite(d["ratio_to_deliot2023"]));
         EXPECT_TRUE(positiveFinite(d["cpu"]["overhead_vs_smooth"]));
         EXPECT_TRUE(positiveFinite(d["cpu"]["anisotropy_plane25_over_plane90"]));
     }
@@ -138,6 +139,10 @@ TEST(BenchDerived, FiguresMatchHandComputedValues) {
     add("plane90", "fast", 10, 6.0);
     add("plane25", "fast", 1, 4.0);
     add("plane25", "fast", 10, 4.0);
+    add("plane90", "deliot2023", 1, 2.0);
+    add("plane90", "deliot2023", 10, 3.0);
+    add("plane25", "deliot2023", 1, 4.0);
+    add("plane25", "deliot2023", 10, 2.0);
     deriveFigures(report);
     const nlohmann::json& z = report.derived["zirr2016"];
     const nlohmann::json& f = report.derived["fast"];
@@ -149,6 +154,8 @@ TEST(BenchDerived, FiguresMatchHandComputedValues) {
     EXPECT_NEAR(f["stability_max_over_min"].get<double>(), 1.5, 1e-12);          // plane90: 6 / 4
     EXPECT_NEAR(f["anisotropy_plane25_over_plane90"].get<double>(), std::sqrt(1.0 * 4.0 / 6.0), 1e-12);
     EXPECT_NEAR(f["speedup_over_zirr2016"].get<double>(), std::pow(2.0 * (8.0 / 6.0) * 4.0 * 8.0, 0.25), 1e-12);
+    EXPECT_NEAR(f["ratio_to_deliot2023"].get<double>(), std::pow(2.0 * 2.0 * 1.0 * 2.0, 0.25), 1e-12);
+    EXPECT_NEAR(report.derived["deliot2023"]["ratio_to_deliot2023"].get<double>(), 1.0, 1e-12);
     EXPECT_NEAR(report.results[9].ratioToSmooth, 3.0, 1e-12);
     std::string markdown = toMarkdown(report);
     EXPECT_NE(markdown.find("| fast | 4.0-6.0 (2.00-3.00x) | 4.0-4.0 (2.00-2.00x) |"), std::string::npos) << markdown;
