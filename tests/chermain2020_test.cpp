@@ -73,7 +73,7 @@ const ch::Dictionary& defaultDictionary() { return Chermain2020Resources::dictio
 
 }  // namespace
 
-// Sec. 5: level l of every marginal is the mixture of exactly 2^(l+1) Gaussian lobes (2^l means and their mirror
+// The dictionary: level l of every marginal is the mixture of exactly 2^(l+1) Gaussian lobes (2^l means and their mirror
 // twins): the table divided by the mixture evaluated here from the same means is one constant per marginal and
 // level (the normalization; 1e-5 relative), and that constant is 1 within 0.2 %: the raw mixture already integrates
 // to 1 over the table's range (the truncation at 4 sigma_dict and the texel sampling lose that little). Using any
@@ -102,7 +102,7 @@ TEST(Chermain2020Dictionary, LevelsAreMixturesOfTwoToTheLevelPlusOneLobes) {
     }
 }
 
-// Sec. 5: the marginals encode the Beckmann marginal N(0, sigma_dict^2) of the dictionary's roughness. Each
+// The dictionary: the marginals encode the Beckmann marginal N(0, sigma_dict^2) of the dictionary's roughness. Each
 // tabulated level's second moment is its own mixture's (the definition sampled at the texel centres over the
 // table's range: 1e-4 relative), and averaged over the 192 marginals it is sigma_dict^2 within 5 standard errors
 // of that mean (2 sigma^4 / (192 2^l) variance per level: 10 % at level 0, 0.06 % at level 15) plus the 0.1 % the
@@ -305,7 +305,7 @@ int marginalPeaks(const ch::Dictionary& d, int level, int m) {
     return peaks;
 }
 
-// Sec. 5, Alg. 3 lines 5-6: a cell of level l holds n = e^log_density 4^(l - (L - 1)) microfacets per unit UV area
+// Alg. 3 lines 5-6: a cell of level l holds n = e^log_density 4^(l - (L - 1)) microfacets per unit UV area
 // and uses the dictionary level log4 n (footprint AOV z, without density randomization); its NDF is the product
 // of two marginals of that level, each a mixture of 2^(l_dist+1) lobes (LevelsAreMixtures... above): 4^(l_dist+1)
 // lobes per cell, of which those closer than about two lobe deviations merge. Counted on the real shader:
@@ -456,7 +456,7 @@ TEST(Chermain2020Reference, ShaderMatchesCpuReference) {
     }
 }
 
-// Sec. 4 / Eq. 14 and the paper's claim: with many microfacets per cell the glinty BRDF converges to Cook-Torrance.
+// Eq. 14 and the paper's claim: with many microfacets per cell the glinty BRDF converges to Cook-Torrance.
 // Very high density (log_density 60: every cell beyond the dictionary, l_dist = L) renders exactly the smooth image
 // (mean within 0.5 %, every 5x5-filtered pixel within 1 %). Dictionary levels alone (no density randomization; the
 // density set so that the cells of the view's coarser level sit at log4 n = 15.4, below the smooth level, and
@@ -544,7 +544,7 @@ INSTANTIATE_TEST_SUITE_P(Views, Chermain2020Golden,
                                            std::make_pair(std::string("chermain2021"), std::string("sphere"))),
                          [](const auto& info) { return info.param.first + "_" + info.param.second; });
 
-// Chermain et al. 2021, Sec. 4: geometric glint anti-aliasing filters each glint over the pixel's range of half
+// Chermain et al. 2021: geometric glint anti-aliasing filters each glint over the pixel's range of half
 // vectors, so glints stop popping as the half vector sweeps past them. Measured with `bench --temporal --motion
 // light` (a still camera, the light turned 0.008 rad a frame; popping = mean |D_t - (D_t-1 + D_t+1) / 2| / mean D,
 // which a smoothly moving highlight keeps near 0) on the sphere at 64 x 64 with alpha 0.1 and sparse glints (log
@@ -615,7 +615,7 @@ std::string bumpySphereScene(const std::string& dir) {
 
 }  // namespace
 
-// Chermain et al. 2021, Sec. 6: LEAN mapping moves the normal map's detail that a pixel cannot resolve into the
+// Chermain et al. 2021: LEAN mapping moves the normal map's detail that a pixel cannot resolve into the
 // NDF. A 32-pixel view of a bumpy sphere (16 normal-map texels per pixel) against the same view rendered at 1024
 // pixels without LEAN (2 pixels per texel) and box-filtered 32 x 32: with LEAN the glint AOV's relative L2 error
 // over the sphere is at most 0.7 x the error without it (which sees only the filtered, flattened normals: a

@@ -193,7 +193,7 @@ TEST(GlintLifespan, Kemppinen2025HalvesWhereTheGlintLobePredicts) {
     }
 }
 
-// chermain2020: every glint is a Gaussian lobe of deviation sigma_lobe in the dictionary's slopes (Sec. 5), which
+// chermain2020: every glint is a Gaussian lobe of deviation sigma_lobe in the dictionary's slopes (Alg. 3), which
 // are the material's slopes m = -h.xy / h.z whitened by the target's sigma = alpha / sqrt 2, warped radially for GGX
 // (T, shaders/glints/chermain2020/chermain2020.glsl) and scaled by sigma_dict (the cells' rotation keeps distances).
 // Like kemppinen2025's lobes, the correlation falls to 0.5 at a shift of 1.665 sigma_lobe / sigma_dict in T(W m).

@@ -41,7 +41,7 @@ double secondDifference(const GlintFrame& before, const GlintFrame& frame, const
 std::vector<Camera> dollyPath(const Camera& start, int frames, double step);
 // The orbit path: `frames` cameras turned about the vertical axis (world +y) through the target by `step` radians
 // per frame, still looking at it. Surfaces keep their footprint while the view direction, hence every half vector,
-// turns: the motion geometric glint anti-aliasing is for (Chermain et al. 2021, Sec. 4).
+// turns: the motion geometric glint anti-aliasing is for (Chermain et al. 2021).
 std::vector<Camera> orbitPath(const Camera& start, int frames, double step);
 
 struct TemporalOptions {

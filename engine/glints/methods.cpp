@@ -215,23 +215,23 @@ static GlintMethod chermainMethod(bool version2021) {
          {"glint_angle", 0.0f, 0.0f, 0.5f,
           "gamma (radians) of one glint; 0 or below the dictionary's lobe: the dictionary's own width (ours)"},
          {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 1.0f,
-          "ggaa: the pixel's range of half vectors filters the marginals (2021 Sec. 4); none: 2020",
+          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA); none: 2020",
           {"none", "ggaa"}},
          {"kernel_size", 0.5f, 0.0f, 2.0f, "scale of the GGAA filter over the pixel's slope footprint (authors: 0.5)"},
          {"aa_derivatives", 0.0f, 0.0f, 1.0f,
           "GGAA footprint from the derivatives of the projected half vector (authors' default) or of its slope",
           {"hemispherical", "slope"}},
          {"normal_filtering", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
-          "lean: the normal map's filtered slope covariance widens the NDF (2021 Sec. 6, LEAN mapping); "
+          "lean: the normal map's filtered slope covariance widens the NDF (2021 normal map filtering, LEAN mapping); "
           "lean_without_rho: its variances only; none",
           {"none", "lean", "lean_without_rho"}},
          {"seed", 0.0f, 0.0f, 1e6f, "random seed of the cells", {}, true}},
         createChermain2020Resources};
-    method.surfaceDerivatives = true;   // GGAA (2021 Sec. 4) needs the pixel's range of half vectors
-    method.slopeCovariance = true;      // LEAN-filtered normal maps (2021 Sec. 6)
+    method.surfaceDerivatives = true;   // GGAA (2021) needs the pixel's range of half vectors
+    method.slopeCovariance = true;      // LEAN-filtered normal maps (2021)
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, 0.25f, 1.0f, 0.0f, true,
-         "Sec. 5, Alg. 3: a cell of n microfacets uses dictionary level log4 n, whose product of marginals has "
+         "Alg. 3: a cell of n microfacets uses dictionary level log4 n, whose product of marginals has "
          "4^(l+1) = 4 n lobes (each 1D marginal's 2^l lobes and their mirror twins): n is a quarter of the facets "
          "per unit UV area. The density randomization spreads log4 n by zeta around this median"},
         {"glint_angle", GlintQuantity::AngularSize, 1.0f, 1.0f, 0.0f, false,

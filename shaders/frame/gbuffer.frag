@@ -8,7 +8,7 @@
 //              zero on uncoated materials; the lighting pass reads it at UNIT_GBUFFER_CLEARCOAT)
 //   6 RGBA16F  with GBUFFER_SLOPE_COVARIANCE only (glint methods that filter normal maps): the LEAN-filtered normal
 //              map's slope covariance Sigma_xx, Sigma_yy, Sigma_xy (zero without a normal map); the normal is then
-//              the LEAN mean slope's (Olano & Baker 2010; Chermain et al. 2021, Sec. 6)
+//              the LEAN mean slope's (Olano & Baker 2010; Chermain et al. 2021)
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/footprint.glsl"

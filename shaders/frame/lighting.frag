@@ -84,7 +84,7 @@ void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
 
 #ifdef GLINT_SURFACE_DERIVATIVES
 // For methods that filter their NDF over the pixel's range of half vectors (GlintMethod::surfaceDerivatives;
-// Chermain et al. 2021, Sec. 4): the screen-space derivatives of the surface, which a full-screen pass cannot take
+// Chermain et al. 2021's GGAA): the screen-space derivatives of the surface, which a full-screen pass cannot take
 // with dFdx. Of the two neighbours along each axis the one nearer the pixel's tangent plane (|offset . n| over
 // |offset| below 0.5) gives a one-sided difference of the G-buffer's position and shading normal; across an edge
 // (no such neighbour) the position moves in the tangent plane and the normal does not change.

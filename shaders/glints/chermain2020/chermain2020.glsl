@@ -4,21 +4,21 @@
 // Facts the papers leave vague come from the authors' MIT code (ASTex-ICube/real_time_glint, shader/glint.frag.glsl;
 // ASTex-ICube/aa_real_time_glint, improved_glint_envmap.frag.glsl); deviations are listed in docs/chermain2020.md.
 //
-// 2020, Sec. 3 / Eq. 1, 6: the NDF in slope space, D(h) = P22(m) / cos^4(theta_h), m = -h.xy / h.z.
-// 2020, Sec. 4, Alg. 1 (Eq. 14): the P-NDF of a pixel is the footprint-weighted mean of the NDFs of the cells of a
+// 2020, Eq. 1, 6: the NDF in slope space, D(h) = P22(m) / cos^4(theta_h), m = -h.xy / h.z.
+// 2020, Alg. 1 (Eq. 14): the P-NDF of a pixel is the footprint-weighted mean of the NDFs of the cells of a
 //   multiscale grid (a MIP pyramid of 2^(L-1) x 2^(L-1) cells per unit UV at level 0); the level follows the
 //   footprint's minor axis (l = L - 1 + log2(minor)) and the two bracketing levels are blended linearly (a blend of
 //   normalized NDFs is normalized).
 // 2020, Alg. 2: the cells of one level are weighted by pbrt's EWA Gaussian (Heckbert 1989) over the footprint
 //   ellipse, regularized by one cell.
-// 2020, Sec. 5, Alg. 3, Eq. 8-11: each cell holds n = density x cell area microfacets; its NDF is the product of
+// 2020, Alg. 3, Eq. 8-11: each cell holds n = density x cell area microfacets; its NDF is the product of
 //   two 1D marginals of dictionary level l_dist = round(log4 n + zeta N(0, 1)) (density randomization), picked at
 //   random, rotated by a random angle and scaled from the dictionary's roughness to the material's; a cell at
 //   l_dist = L is the smooth NDF; a cell is empty with probability 1 - microfacet relative area (Alg. 3 line 4).
-// 2021, Sec. 5 (Eq. 18): the scaling is the whitening of a correlated anisotropic Gaussian (sigma_x, sigma_y, rho).
-// 2021, Sec. 4 (GGAA): the pixel's range of half vectors is carried into the dictionary's slope space by the same
+// 2021, Eq. 18: the scaling is the whitening of a correlated anisotropic Gaussian (sigma_x, sigma_y, rho).
+// 2021, geometric glint anti-aliasing (GGAA, the paper's first contribution): the pixel's range of half vectors is carried into the dictionary's slope space by the same
 //   transform, and the marginals are looked up with the hardware's filtered textureGrad (`anti_aliasing`).
-// 2021, Sec. 6: LEAN mapping (Olano & Baker 2010): the normal map's filtered slope covariance (the G-buffer's, read
+// 2021, normal map filtering: LEAN mapping (Olano & Baker 2010): the normal map's filtered slope covariance (the G-buffer's, read
 //   as GlintSurface.slopeCovariance) is added to the material's (`normal_filtering`).
 // GGX (ours; the papers' base NDF is Beckmann, the dictionary's lobes are Gaussian): the half vector's slope is
 //   warped radially so that the Gaussian the cells converge to becomes GGX's Student-t (glintD); smooth cells are
@@ -146,7 +146,7 @@ GlintPixel glintSetup(GlintSurface s) {
     GlintPixel px;
     // --- Shape (2021 Eq. 18): the material's sigma = alpha / sqrt 2 per axis (roughness_anisotropy = alpha_x /
     // alpha_y at alpha_x alpha_y = alpha^2), its correlation rho, plus the normal map's filtered slope covariance
-    // (LEAN, 2021 Sec. 6) when normal_filtering is on. Clamps as the authors' (sigma in [0.01, 1]).
+    // (LEAN, 2021 normal map filtering) when normal_filtering is on. Clamps as the authors' (sigma in [0.01, 1]).
     float ratio = sqrt(max(P_ROUGHNESS_ANISOTROPY, 1e-3));
     float sx = s.alpha * ratio * 0.70710678, sy = s.alpha / ratio * 0.70710678;
     float rho = clamp(P_SLOPE_CORRELATION, -0.99, 0.99);
@@ -199,7 +199,7 @@ GlintPixel glintSetup(GlintSurface s) {
 // slope (without the rotation, whose determinant is 1) and the smooth P22 at m.
 struct ChermainSlope {
     vec2 u;             // slope in the standard-normal space of the target (2021 Eq. 18; GGX warped, see below)
-    vec2 dudx, dudy;    // its derivatives x kernel / range (2021 Sec. 4), in the dictionary's texture coordinates
+    vec2 dudx, dudy;    // its derivatives x kernel / range (2021 GGAA), in the dictionary's texture coordinates
     float jacobian;     // |d(dictionary slope) / dm| = sigma_dict^2 |W| |T|
     float smoothP22;    // the target P22 at m: a cell at l_dist = L
     bool filtered;
@@ -250,7 +250,7 @@ float chermainCellP22(ChermainSlope sl, ChermainCell c) {
     }
     float pi_, pj;
     if (sl.filtered) {
-        // 2021 Sec. 4: the footprint in slope space goes through the same transform as the slope.
+        // 2021 GGAA: the footprint in slope space goes through the same transform as the slope.
         vec2 gx = CHERMAIN_SIGMA_DICT * (invR * sl.dudx), gy = CHERMAIN_SIGMA_DICT * (invR * sl.dudy);
         vec2 gxw = sqrt(gx * gx + widen * widen);
         pi_ = chermainMarginalGrad(c.lDist, c.i, t.x, gxw.x, gy.x);
@@ -349,7 +349,7 @@ void chermainDrawLevels(inout GlintPixel px) {
     }
 }
 
-// 2021 Sec. 4: the screen-space derivatives of the half vector in the shading frame, from the surface's
+// 2021 GGAA: the screen-space derivatives of the half vector in the shading frame, from the surface's
 // derivatives (GLINT_SURFACE_DERIVATIVES: position and shading normal one pixel right / up) and the view and
 // light distances. The frame turns with the normal (dt = -(t.dn) n, db = -(b.dn) n). Zero when the lighting pass
 // provides no derivatives (probes), which makes the filtered lookups plain ones.

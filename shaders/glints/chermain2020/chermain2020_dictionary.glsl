@@ -1,7 +1,7 @@
-// Chermain et al. 2020, Sec. 5: the dictionary of multiscale 1D marginal slope distributions, generated and cached
+// Chermain et al. 2020: the dictionary of multiscale 1D marginal slope distributions, generated and cached
 // by engine/glints/chermain2020/dictionary.cpp and uploaded by engine/glints/chermain2020/resources.cpp.
 // Texture: a 1D array, RGBA16F, CHERMAIN_TEXELS texels per row with its full mip chain (GL box filter: each level
-// keeps the integral, so the filtered marginals stay normalized, Chermain et al. 2021 Sec. 4). Row
+// keeps the integral, so the filtered marginals stay normalized, Chermain et al. 2021's GGAA). Row
 // level * CHERMAIN_ROWS_PER_LEVEL + m / 4 holds marginals m .. m + 3 of that level in R, G, B, A. Texel j holds the
 // marginal at slope |x| = (j + 0.5) / CHERMAIN_TEXELS * 4 sigma_dict; beyond 4 sigma_dict the marginal is 0.
 // Wrap: mirrored repeat (the marginals are even: linear filtering across 0 reads the mirror image).
@@ -26,7 +26,7 @@ float chermainMarginalLod(int level, int m, float t, float lod) {
 }
 
 // The same, filtered by the hardware over the footprint [t - |dx|, t + |dx|] x [t - |dy|, t + |dy|] (Chermain et
-// al. 2021, Sec. 4: geometric glint anti-aliasing; the derivatives are in texture coordinates).
+// al. 2021: geometric glint anti-aliasing; the derivatives are in texture coordinates).
 float chermainMarginalGrad(int level, int m, float t, float dx, float dy) {
     vec4 four = textureGrad(u_chermainDictionary, vec2(t, float(level * CHERMAIN_ROWS_PER_LEVEL + (m >> 2))), dx, dy);
     return four[m & 3];
