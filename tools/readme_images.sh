@@ -13,7 +13,7 @@ if [ "$what" = all ] || [ "$what" = hero ]; then
         --out screenshots/hero_atrium_deliot2023.png
 fi
 if [ "$what" = all ] || [ "$what" = grids ]; then
-    M=deliot2023,zirr2016,kemppinen2025,wang2020
+    M=deliot2023,zirr2016,kemppinen2025,wang2020,chermain2020
     E="--env none --set material.alpha=0.15"
     # shellcheck disable=SC2086
     "$glimmer" render --scene plane90 --size 256x256 $E $TAA --compare $M --crop 200,96,32,24 --crop 30,170,32,24 \
