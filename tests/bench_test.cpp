@@ -75,6 +75,7 @@ void expectDerivedFiguresPositiveAndFinite(const nlohmann::json& derived) {
         EXPECT_GE(d["stability_max_over_min"].get<double>(), 1.0);
         EXPECT_TRUE(positiveFinite(d["anisotropy_plane25_over_plane90"]));
         EXPECT_TRUE(positiveFinite(d["speedup_over_zirr2016"]));
+        EXPECT_TRUE(positiveFinite(d["ratio_to_deliot2023"]));
         EXPECT_TRUE(positiveFinite(d["cpu"]["overhead_vs_smooth"]));
         EXPECT_TRUE(positiveFinite(d["cpu"]["anisotropy_plane25_over_plane90"]));
     }
@@ -147,6 +148,10 @@ TEST(BenchDerived, FiguresMatchHandComputedValues) {
     add("plane90", "fast", 10, 6.0);
     add("plane25", "fast", 1, 4.0);
     add("plane25", "fast", 10, 4.0);
+    add("plane90", "deliot2023", 1, 2.0);
+    add("plane90", "deliot2023", 10, 3.0);
+    add("plane25", "deliot2023", 1, 4.0);
+    add("plane25", "deliot2023", 10, 2.0);
     deriveFigures(report);
     const nlohmann::json& z = report.derived["zirr2016"];
     const nlohmann::json& f = report.derived["fast"];
@@ -158,6 +163,8 @@ TEST(BenchDerived, FiguresMatchHandComputedValues) {
     EXPECT_NEAR(f["stability_max_over_min"].get<double>(), 1.5, 1e-12);          // plane90: 6 / 4
     EXPECT_NEAR(f["anisotropy_plane25_over_plane90"].get<double>(), std::sqrt(1.0 * 4.0 / 6.0), 1e-12);
     EXPECT_NEAR(f["speedup_over_zirr2016"].get<double>(), std::pow(2.0 * (8.0 / 6.0) * 4.0 * 8.0, 0.25), 1e-12);
+    EXPECT_NEAR(f["ratio_to_deliot2023"].get<double>(), std::pow(2.0 * 2.0 * 1.0 * 2.0, 0.25), 1e-12);
+    EXPECT_NEAR(report.derived["deliot2023"]["ratio_to_deliot2023"].get<double>(), 1.0, 1e-12);
     EXPECT_NEAR(report.results[9].ratioToSmooth, 3.0, 1e-12);
     std::string markdown = toMarkdown(report);
     EXPECT_NE(markdown.find("| fast | 4.0-6.0 (2.00-3.00x) | 4.0-4.0 (2.00-2.00x) |"), std::string::npos) << markdown;
@@ -351,6 +358,38 @@ TEST(BenchTemporal, ReprojectedFlickerSeparatesStableFromPopping) {
     EXPECT_GT(stable.matchedFraction, 0.3);
     EXPECT_LT(stable.flicker, 0.05);
     EXPECT_GT(popping.flicker, 0.5);
+}
+
+// --motion orbit and light (CPU): the orbit keeps the camera's distance and height and turns it by step radians a
+// frame; the popping measure (second difference) is 0 for a pattern that changes linearly in time (a highlight
+// sliding smoothly), exactly |spike| / value for one frame that jumps, and ignores invalid pixels.
+TEST(BenchTemporal, OrbitPathAndPoppingMeasure) {
+    Camera start;
+    start.position = {1.0f, 2.0f, 3.0f};
+    start.target = {0.0f, 0.5f, 0.0f};
+    std::vector<Camera> orbit = orbitPath(start, 4, 0.1);
+    ASSERT_EQ(orbit.size(), 4u);
+    for (size_t k = 0; k < orbit.size(); ++k) {
+        glm::vec3 a = start.position - start.target, b = orbit[k].position - orbit[k].target;
+        EXPECT_NEAR(glm::length(b), glm::length(a), 1e-5f);
+        EXPECT_NEAR(b.y, a.y, 1e-6f);
+        float turn = std::atan2(a.x, a.z) - std::atan2(b.x, b.z);
+        EXPECT_NEAR(std::abs(turn), 0.1f * float(k), 1e-5f) << k;
+    }
+    auto frame = [](std::vector<float> values) {
+        GlintFrame f;
+        f.width = int(values.size());
+        f.height = 1;
+        f.glint = values;
+        f.valid.assign(values.size(), 1);
+        f.depth.assign(values.size(), 1.0f);
+        return f;
+    };
+    EXPECT_EQ(secondDifference(frame({1, 2, 3}), frame({2, 3, 4}), frame({3, 4, 5})), 0.0);
+    EXPECT_NEAR(secondDifference(frame({1, 1}), frame({3, 1}), frame({1, 1})), 2.0 / 4.0, 1e-12);
+    GlintFrame spike = frame({3, 100}), before = frame({1, 1}), after = frame({1, 1});
+    spike.valid[1] = 0;   // an invalid pixel counts nowhere
+    EXPECT_NEAR(secondDifference(before, spike, after), 2.0 / 3.0, 1e-12);
 }
 
 // Through the renderer: a static camera gives exactly 0 for a deterministic method; a dolly gives a finite value.

@@ -14,7 +14,7 @@ if [ "$what" = all ] || [ "$what" = hero ]; then
 fi
 if [ "$what" = all ] || [ "$what" = grids ]; then
     # Every method and the discrete-facet reference (issue 36): the material as it is, counted facet by facet.
-    M=deliot2023,zirr2016,kemppinen2025,wang2020,reference
+    M=deliot2023,zirr2016,kemppinen2025,wang2020,chermain2020,reference
     E="--env none --set material.alpha=0.15"
     # shellcheck disable=SC2086
     "$glimmer" render --scene plane90 --size 256x256 $E $TAA --compare $M --crop 200,96,32,24 --crop 30,170,32,24 \

@@ -24,14 +24,16 @@ static const char* kBenchHelp =
     "                     [--backend egl|osmesa] [--method-file PATH.glsl ...]\n"
     "                     [--json FILE] [--csv FILE] [--markdown FILE]\n"
     "       glimmer bench --temporal [--scenes a,b] [--methods a,b] [--size WxH] [--frames N] [--step S]\n"
-    "                     [--aa off|taa] [--json FILE] [--markdown FILE]\n"
+    "                     [--motion dolly|orbit|light] [--aa off|taa] [--json FILE] [--markdown FILE]\n"
     "       glimmer bench --list-suites\n"
     "  Times each scene x method (x variant x density of the suite): warm-up frames, then N frames each closed by\n"
     "  glFinish (wall clock; median, min, max), ratio to smooth measured in the same run. Without --suite: one case\n"
     "  per --scenes (or --scene) and --methods (or --method; file:PATH.glsl names a user method). Smooth is\n"
     "  always timed. The Markdown table goes to stdout, progress to stderr. --temporal measures glint flicker\n"
-    "  along a dolly of N cameras (step S x the distance to the target per frame, default 0.01); with --aa it\n"
-    "  measures the displayed image rendered with that anti-aliasing instead of the glint AOV.\n";
+    "  along a dolly of N cameras (step S x the distance to the target per frame, default 0.01), or with\n"
+    "  --motion orbit along N cameras turned about the vertical through the target (S radians per frame), or\n"
+    "  --motion light with the camera still and the lights turned by S radians per frame (light.turn, in degrees); with\n"
+    "  --aa it measures the displayed image rendered with that anti-aliasing instead of the glint AOV.\n";
 
 static std::vector<std::string> splitList(const std::string& text, const char* flag) {
     std::vector<std::string> items;
@@ -105,6 +107,9 @@ int runBenchCommand(const std::vector<std::string>& argList) {
             if (step->empty() || *end != '\0' || !(options.step >= 0.0 && options.step <= 1.0))
                 throw UsageError("--step: '" + *step + "' is not a number in [0, 1]");
         }
+        options.motion = args.valueOr("--motion", "dolly");
+        if (options.motion != "dolly" && options.motion != "orbit" && options.motion != "light")
+            throw UsageError("--motion: '" + options.motion + "' is not dolly, orbit or light");
         options.backend = request.backend;
         options.shaderRoot = request.shaderRoot;
         options.extraSets = extraSets;
@@ -114,6 +119,7 @@ int runBenchCommand(const std::vector<std::string>& argList) {
         if (auto aa = args.value("--aa")) {
             if (*aa != "off" && *aa != "taa") throw UsageError("--aa: '" + *aa + "' is not off or taa");
             options.aa = *aa;
+            if (options.motion == "light") throw UsageError("--aa: not available with --motion light");
         }
         if (csvPath) throw UsageError("--csv: not available with --temporal (use --json)");
         args.finish();

@@ -214,7 +214,7 @@ static nlohmann::json figuresFor(const BenchReport& report, double BenchResult::
             methods.push_back(r.benchCase.method);
     nlohmann::json figures = nlohmann::json::object();
     for (const std::string& method : methods) {
-        std::vector<double> overhead, anisotropy, speedup;
+        std::vector<double> overhead, anisotropy, speedup, toDeliot;
         std::map<std::string, std::pair<double, double>> sweepRange;  // scene|variant -> (min, max) of medians
         std::map<std::string, int> sweepCount;
         for (const BenchResult& r : report.results) {
@@ -235,6 +235,9 @@ static nlohmann::json figuresFor(const BenchReport& report, double BenchResult::
             if (const BenchResult* z = findResult(report, "zirr2016", r.benchCase.scene, r.benchCase);
                 z && value > 0 && z->*metric > 0)
                 speedup.push_back(z->*metric / value);
+            if (const BenchResult* d = findResult(report, "deliot2023", r.benchCase.scene, r.benchCase);
+                d && value > 0 && d->*metric > 0)
+                toDeliot.push_back(value / d->*metric);
         }
         nlohmann::json stabilityPerGroup = nlohmann::json::object();
         double worst = 0.0;
@@ -250,6 +253,7 @@ static nlohmann::json figuresFor(const BenchReport& report, double BenchResult::
             {"stability_per_scene", stabilityPerGroup},
             {"anisotropy_plane25_over_plane90", geometricMean(anisotropy)},
             {"speedup_over_zirr2016", geometricMean(speedup)},
+            {"ratio_to_deliot2023", geometricMean(toDeliot)},
         };
     }
     return figures;
@@ -271,6 +275,7 @@ void deriveFigures(BenchReport& report) {
         {"stability_max_over_min", "largest over scenes of max / min of the median over the density sweep"},
         {"anisotropy_plane25_over_plane90", "geometric mean of plane25 median / plane90 median at the same point"},
         {"speedup_over_zirr2016", "geometric mean of zirr2016's median / this method's median at the same point"},
+        {"ratio_to_deliot2023", "geometric mean of this method's median / deliot2023's median at the same point"},
         {"cpu", "the same figures from the median process CPU time per frame (all threads) instead of wall time"},
     };
 }
@@ -401,14 +406,15 @@ std::string toMarkdown(const BenchReport& report) {
     };
     auto figureTable = [&](bool cpu) {
         out << "| method | overhead vs smooth | stability (max/min over sweep) | plane25 / plane90 | speed-up over "
-               "zirr2016 |\n|---|---|---|---|---|\n";
+               "zirr2016 | ratio to deliot2023 |\n|---|---|---|---|---|---|\n";
         for (const std::string& method : methods) {
             nlohmann::json d = report.derived.contains(method) ? report.derived[method] : nlohmann::json::object();
             if (cpu) d = d.contains("cpu") ? d["cpu"] : nlohmann::json::object();
             out << "| " << method << " | " << figure(d.value("overhead_vs_smooth", nlohmann::json()), "x") << " | "
                 << figure(d.value("stability_max_over_min", nlohmann::json()), "") << " | "
                 << figure(d.value("anisotropy_plane25_over_plane90", nlohmann::json()), "") << " | "
-                << figure(d.value("speedup_over_zirr2016", nlohmann::json()), "x") << " |\n";
+                << figure(d.value("speedup_over_zirr2016", nlohmann::json()), "x") << " | "
+                << figure(d.value("ratio_to_deliot2023", nlohmann::json()), "x") << " |\n";
         }
     };
     timeTable(&BenchResult::medianMs, &BenchResult::ratioToSmooth);

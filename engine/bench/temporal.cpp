@@ -50,6 +50,18 @@ FlickerMeasure reprojectedFlicker(const GlintFrame& previous, const GlintFrame& 
     return m;
 }
 
+double secondDifference(const GlintFrame& before, const GlintFrame& frame, const GlintFrame& after) {
+    double differenceSum = 0.0, valueSum = 0.0;
+    for (size_t i = 0; i < frame.glint.size(); ++i) {
+        if (!frame.valid[i] || !before.valid[i] || !after.valid[i]) continue;
+        double a = before.glint[i], b = frame.glint[i], c = after.glint[i];
+        if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) continue;
+        differenceSum += std::abs(b - 0.5 * (a + c));
+        valueSum += std::abs(b);
+    }
+    return valueSum > 0.0 ? differenceSum / valueSum : 0.0;
+}
+
 std::vector<Camera> dollyPath(const Camera& start, int frames, double step) {
     std::vector<Camera> path;
     glm::vec3 offset = start.target - start.position;
@@ -59,6 +71,19 @@ std::vector<Camera> dollyPath(const Camera& start, int frames, double step) {
         c.position += move;
         c.target += move;
         c.name = start.name + "+dolly" + std::to_string(i);
+        path.push_back(c);
+    }
+    return path;
+}
+
+std::vector<Camera> orbitPath(const Camera& start, int frames, double step) {
+    std::vector<Camera> path;
+    glm::vec3 offset = start.position - start.target;
+    for (int i = 0; i < frames; ++i) {
+        Camera c = start;
+        float angle = float(step * i), cs = std::cos(angle), sn = std::sin(angle);
+        c.position = start.target + glm::vec3(cs * offset.x + sn * offset.z, offset.y, -sn * offset.x + cs * offset.z);
+        c.name = start.name + "+orbit" + std::to_string(i);
         path.push_back(c);
     }
     return path;
@@ -146,7 +171,10 @@ std::vector<TemporalResult> runTemporal(const TemporalOptions& options) {
         request.settings.method = methods.front();
         request.settings.ibl = options.ibl;
         OffscreenSession session(request);
-        std::vector<Camera> path = dollyPath(session.scene().camera(options.camera), options.frames, options.step);
+        const Camera& start = session.scene().camera(options.camera);
+        std::vector<Camera> path = options.motion == "orbit"   ? orbitPath(start, options.frames, options.step)
+                                   : options.motion == "light" ? dollyPath(start, options.frames, 0.0)
+                                                               : dollyPath(start, options.frames, options.step);
         for (const std::string& method : methods) {
             request.settings = RenderSettings();
             request.settings.method = method;
@@ -155,13 +183,28 @@ std::vector<TemporalResult> runTemporal(const TemporalOptions& options) {
             TemporalResult result{scene, method, options.aa, {}, 0, 0, 0};
             std::vector<GlintFrame> imagePath;
             if (!options.aa.empty()) imagePath = captureImagePath(session, request, path, options.aa);
-            GlintFrame previous = imagePath.empty() ? captureFrame(session, request, path.front()) : imagePath[0];
+            // motion=light: frame k turns the lights by k x step (light.turn) under the still camera.
+            auto frameRequest = [&](size_t k) {
+                RenderRequest r = request;
+                if (options.motion == "light") r.settings.apply("light.turn=" + std::to_string(glm::degrees(options.step * double(k))));   // degrees
+                return r;
+            };
+            GlintFrame previous = imagePath.empty() ? captureFrame(session, frameRequest(0), path.front()) : imagePath[0];
+            std::vector<GlintFrame> lightFrames;   // motion=light: every frame, for the second difference
+            if (options.motion == "light") lightFrames.push_back(previous);
             for (size_t k = 1; k < path.size(); ++k) {
-                GlintFrame current = imagePath.empty() ? captureFrame(session, request, path[k]) : imagePath[k];
+                GlintFrame current = imagePath.empty() ? captureFrame(session, frameRequest(k), path[k]) : imagePath[k];
                 FlickerMeasure m = reprojectedFlicker(previous, current);
                 result.perPair.push_back(m.flicker);
                 result.matchedFraction += m.matchedFraction / double(path.size() - 1);
+                if (options.motion == "light") lightFrames.push_back(current);
                 previous = std::move(current);
+            }
+            if (lightFrames.size() >= 3) {
+                result.popping = 0.0;
+                for (size_t k = 1; k + 1 < lightFrames.size(); ++k)
+                    result.popping += secondDifference(lightFrames[k - 1], lightFrames[k], lightFrames[k + 1]) /
+                                      double(lightFrames.size() - 2);
             }
             for (double f : result.perPair) {
                 result.meanFlicker += f / double(result.perPair.size());
@@ -169,9 +212,10 @@ std::vector<TemporalResult> runTemporal(const TemporalOptions& options) {
             }
             if (options.progress) {
                 char line[200];
-                std::snprintf(line, sizeof line, "temporal %s %s: flicker mean %.4f max %.4f (matched %.0f%%)",
+                std::snprintf(line, sizeof line, "temporal %s %s: flicker mean %.4f max %.4f (matched %.0f%%)%s",
                               scene.c_str(), method.c_str(), result.meanFlicker, result.maxFlicker,
-                              100.0 * result.matchedFraction);
+                              100.0 * result.matchedFraction,
+                              result.popping >= 0.0 ? (", popping " + std::to_string(result.popping)).c_str() : "");
                 options.progress(line);
             }
             results.push_back(std::move(result));
@@ -189,26 +233,36 @@ nlohmann::json temporalToJson(const TemporalOptions& options, const std::vector<
                         {"flicker_mean", r.meanFlicker},
                         {"flicker_max", r.maxFlicker},
                         {"flicker_per_pair", r.perPair},
-                        {"matched_fraction", r.matchedFraction}});
+                        {"matched_fraction", r.matchedFraction},
+                        {"popping", r.popping >= 0.0 ? nlohmann::json(r.popping) : nlohmann::json()}});
     return {{"schema", "glimmer-bench-temporal/1"},
             {"meta",
              {{"resolution", {options.width, options.height}},
               {"frames", options.frames},
-              {"dolly_step", options.step},
+              {"motion", options.motion},
+              {options.motion == "dolly" ? "dolly_step" : "step_radians", options.step},
               {"definition", "mean |D_t - reprojected D_t-1| / mean D_t over pixels visible in both frames "
-                             "(glint AOV = D of the first light; nearest-pixel reprojection with depth test)"}}},
+                             "(glint AOV = D of the first light; nearest-pixel reprojection with depth test)"},
+              {"popping_definition", "motion=light only: mean over inner frames of mean |D_t - (D_t-1 + D_t+1) / 2| / "
+                                     "mean D_t (a still camera)"}}},
             {"results", rows}};
 }
 
 std::string temporalToMarkdown(const std::vector<TemporalResult>& results) {
     std::ostringstream out;
-    out << "| scene | method | measured | flicker (mean) | flicker (max) | matched pixels |\n"
-           "|---|---|---|---|---|---|\n";
+    bool popping = std::any_of(results.begin(), results.end(), [](const TemporalResult& r) { return r.popping >= 0.0; });
+    out << "| scene | method | measured | flicker (mean) | flicker (max) | matched pixels |"
+        << (popping ? " popping |\n|---|---|---|---|---|---|---|\n" : "\n|---|---|---|---|---|---|\n");
     char line[200];
     for (const TemporalResult& r : results) {
-        std::snprintf(line, sizeof line, "| %s | %s | %s | %.4f | %.4f | %.0f%% |\n", r.scene.c_str(),
+        std::snprintf(line, sizeof line, "| %s | %s | %s | %.4f | %.4f | %.0f%% |", r.scene.c_str(),
                       r.method.c_str(), r.aa.empty() ? "D (glint AOV)" : ("image, aa=" + r.aa).c_str(), r.meanFlicker, r.maxFlicker, 100.0 * r.matchedFraction);
         out << line;
+        if (popping) {
+            std::snprintf(line, sizeof line, " %.4f |", r.popping);
+            out << line;
+        }
+        out << "\n";
     }
     return out.str();
 }

@@ -34,8 +34,15 @@ struct FlickerMeasure {
 // Reprojects `previous` into `current` (nearest pixel; a match needs both pixels valid and depths agreeing to 1%).
 FlickerMeasure reprojectedFlicker(const GlintFrame& previous, const GlintFrame& current);
 
+// The light-motion measure of TemporalResult::popping for three consecutive frames of a still camera.
+double secondDifference(const GlintFrame& before, const GlintFrame& frame, const GlintFrame& after);
+
 // The camera path: `frames` cameras, each dollied forward by `step` x the distance to the target (0 = static).
 std::vector<Camera> dollyPath(const Camera& start, int frames, double step);
+// The orbit path: `frames` cameras turned about the vertical axis (world +y) through the target by `step` radians
+// per frame, still looking at it. Surfaces keep their footprint while the view direction, hence every half vector,
+// turns: the motion geometric glint anti-aliasing is for (Chermain et al. 2021).
+std::vector<Camera> orbitPath(const Camera& start, int frames, double step);
 
 struct TemporalOptions {
     std::vector<std::string> scenes;     // empty = plane25, atrium
@@ -44,6 +51,10 @@ struct TemporalOptions {
     int width = 640, height = 360;
     int frames = 8;                      // cameras along the path (frames - 1 frame pairs)
     double step = 0.01;
+    // "dolly" (step: fraction of the distance), "orbit" (step: radians) or "light" (a still camera; every light
+    // turns about the vertical by step radians per frame: light.turn, which takes degrees): the half vectors turn, nothing moves on
+    // screen, so the measure has no reprojection error and a still pattern scores exactly 0.
+    std::string motion = "dolly";
     Backend backend = Backend::Egl;
     std::filesystem::path shaderRoot;
     std::vector<std::string> extraSets;
@@ -59,6 +70,10 @@ struct TemporalResult {
     std::string scene, method, aa;
     std::vector<double> perPair;         // flicker of each consecutive frame pair
     double meanFlicker = 0.0, maxFlicker = 0.0, matchedFraction = 0.0;
+    // motion=light only (a still camera, so pixels correspond exactly): the mean over inner frames of
+    // mean |D_t - (D_t-1 + D_t+1) / 2| / mean D_t. A smoothly moving highlight (the smooth method) scores about 0;
+    // glints that pop as the half vector sweeps past them score high. -1 for other motions.
+    double popping = -1.0;
 };
 
 std::vector<TemporalResult> runTemporal(const TemporalOptions& options);

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "common/bindings.glsl"
+#include "glints/chermain2020/resources.h"
 #include "glints/deliot2023/deliot2023_resources.h"
 #include "glints/wang2020/wang2020_post_pass.h"
 #include "glints/wang2020/wang2020_resources.h"
@@ -205,6 +206,70 @@ static GlintMethod wang2020Method() {
     return method;
 }
 
+// Chermain et al. 2020 (procedural physically based glints, the dictionary of multiscale marginals) and its 2021
+// options (geometric glint anti-aliasing, LEAN-filtered normal maps): shaders/glints/chermain2020/chermain2020.glsl,
+// docs/chermain2020.md. `chermain2021` is the same shader with the 2021 options on (the form Unreal Engine 5 ships).
+// Defaults are the authors' demos' (ASTex-ICube/real_time_glint and aa_real_time_glint).
+static GlintMethod chermainMethod(bool version2021) {
+    GlintMethod method{
+        version2021 ? "chermain2021" : "chermain2020",
+        version2021 ? "Chermain et al. 2021 (2020 + geometric glint anti-aliasing, LEAN normal maps)"
+                    : "Chermain et al. 2020 (procedural physically based glints, dictionary of marginals)",
+        "GLINT_METHOD_CHERMAIN2020",
+        "glints/chermain2020/chermain2020.glsl",
+        version2021 ? "Chermain, Lucas, Sauvage, Dischler, Dachsbacher 2021, Real-Time Geometric Glint Anti-Aliasing "
+                      "with Normal Map Filtering, PACMCGIT 4(1) (on Chermain et al. 2020, CGF 39(7))"
+                    : "Chermain, Sauvage, Dischler, Dachsbacher 2020, Procedural Physically based BRDF for Real-Time "
+                      "Rendering of Glints, Computer Graphics Forum 39(7)",
+        {{"log_density", 27.0f, 0.0f, 80.0f,
+          "natural log of the microfacets per unit UV area (Alg. 3 line 5: a cell holds e^log_density x its area)"},
+         {"microfacet_relative_area", 1.0f, 0.001f, 1.0f,
+          "fraction of the grid cells that hold microfacets; the others reflect nothing (Alg. 3 line 4)"},
+         {"density_randomization", 2.0f, 0.0f, 8.0f,
+          "zeta: standard deviation of a cell's dictionary level around log4 n (Alg. 3 line 8; authors: 2)"},
+         {"max_anisotropy", version2021 ? 4.0f : 8.0f, 1.0f, 64.0f,
+          "largest footprint eccentricity; longer footprints widen their minor axis (Alg. 1 line 4)"},
+         {"lod_bias", 0.0f, -8.0f, 8.0f,
+          "added to the grid level: negative = finer cells with fewer microfacets each, sparser brighter glints "
+          "(like Unreal's r.Substrate.Glints.LevelBias)"},
+         {"roughness_anisotropy", 1.0f, 0.1f, 10.0f, "alpha_x / alpha_y of the target NDF (alpha_x alpha_y = alpha^2)",
+          {}, false, true},
+         {"slope_correlation", 0.0f, -0.99f, 0.99f, "rho: correlation of the target's x and y slopes (2021 Eq. 18)"},
+         {"glint_anisotropy", 1.0f, 1.0f, 64.0f,
+          "grid cells (and glints) this many times longer along the tangent than across it (density per area kept)",
+          {}, false, true},
+         {"glint_angle", 0.0f, 0.0f, 0.5f,
+          "gamma (radians) of one glint; 0 or below the dictionary's lobe: the dictionary's own width (ours)"},
+         {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 1.0f,
+          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA); none: 2020",
+          {"none", "ggaa"}},
+         {"kernel_size", 0.5f, 0.0f, 2.0f, "scale of the GGAA filter over the pixel's slope footprint (authors: 0.5)"},
+         {"aa_derivatives", 0.0f, 0.0f, 1.0f,
+          "GGAA footprint from the derivatives of the projected half vector (authors' default) or of its slope",
+          {"hemispherical", "slope"}},
+         {"normal_filtering", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
+          "lean: the normal map's filtered slope covariance widens the NDF (2021 normal map filtering, LEAN mapping); "
+          "lean_without_rho: its variances only; none",
+          {"none", "lean", "lean_without_rho"}},
+         {"seed", 0.0f, 0.0f, 1e6f, "random seed of the cells", {}, true}},
+        createChermain2020Resources};
+    method.surfaceDerivatives = true;   // GGAA (2021) needs the pixel's range of half vectors
+    method.slopeCovariance = true;      // LEAN-filtered normal maps (2021)
+    method.materialMapping = {
+        {"log_density", GlintQuantity::Density, 0.25f, 1.0f, 0.0f, true,
+         "Alg. 3: a cell of n microfacets uses dictionary level log4 n, whose product of marginals has "
+         "4^(l+1) = 4 n lobes (each 1D marginal's 2^l lobes and their mirror twins): n is a quarter of the facets "
+         "per unit UV area. The density randomization spreads log4 n by zeta around this median"},
+        {"glint_angle", GlintQuantity::AngularSize, 1.0f, 1.0f, 0.0f, false,
+         "gamma: a facet reflects h within a cone of half-angle gamma (solid angle pi gamma^2); a Gaussian lobe of "
+         "deviation s in slope space has the same area when s = gamma / sqrt 2 (ours: the paper ties the lobe "
+         "width to the dictionary, 0.02 alpha / alpha_dist)"},
+        {"glint_anisotropy", GlintQuantity::Anisotropy, 1.0f, 1.0f, 0.0f, false,
+         "glints stretched along the tangent: the authors' texCoord *= (1000, 1) remark, as cells stretched along u"}};
+    method.convergence = {{"log_density", 60.0f}};   // every cell of a 128-pixel view at l_dist = L: the smooth NDF
+    return method;
+}
+
 static std::vector<GlintMethod>& methodTable() {
     static std::vector<GlintMethod> methods = {
         smoothMethod(),
@@ -212,6 +277,8 @@ static std::vector<GlintMethod>& methodTable() {
         zirr2016Method(),
         kemppinen2025Method(),
         wang2020Method(),
+        chermainMethod(false),
+        chermainMethod(true),
     };
     return methods;
 }

@@ -87,6 +87,14 @@ struct GlintMethod {
     // GLINT_METHOD_TARGETS): wang2020 keeps its glint radiance and directional occlusion out of the radiance so that
     // its Sec. 4.4 passes can blur them and add them. At most 6 (8 draw buffers).
     std::vector<MethodTarget> lightingTargets;
+    // The lighting pass fills GlintSurface's screen-space derivatives of the position and the shading normal and
+    // sets g_glintLightDistance per light (GLINT_SURFACE_DERIVATIVES; shaders/common/glint_surface.glsl), for
+    // methods that filter over the pixel's range of half vectors (Chermain et al. 2021's anti-aliasing).
+    bool surfaceDerivatives = false;
+    // The G-buffer pass filters normal maps by LEAN mapping (Olano & Baker 2010) and writes the filtered slope
+    // covariance, which the lighting pass hands to the method (GlintSurface::slopeCovariance, GLINT_SLOPE_COVARIANCE;
+    // texture unit UNIT_GBUFFER_SLOPE_COVARIANCE must stay free of the method's resources).
+    bool slopeCovariance = false;
     // How the glint material (scene.h GlintMaterial) sets this method's parameters per material (glint_mapping.h);
     // parameters without a mapping keep their default unless --set. Each row cites the paper's definition.
     std::vector<ParamMapping> materialMapping;

@@ -53,7 +53,54 @@ gl::Texture uploadTexture(const TextureData& data) {
     return texture;
 }
 
+// The LEAN maps of one normal texture (GpuScene::ensureLeanMaps): the slope of each texel's normal, decoded as the
+// G-buffer decodes it (rgb * 2 - 1, normalized; n.z clamped to 0.05 so that a slope stays below 20), and its
+// products, with the normal texture's size, sampler and full mip chain.
+void uploadLeanMaps(const TextureData& data, gl::Texture& moments, gl::Texture& cross) {
+    const size_t texels = size_t(data.width) * data.height;
+    std::vector<float> m4(texels * 4), mxy(texels);
+    for (size_t i = 0; i < texels; ++i) {
+        glm::vec3 n = glm::vec3(data.rgba[4 * i], data.rgba[4 * i + 1], data.rgba[4 * i + 2]) * (2.0f / 255.0f) - 1.0f;
+        float length = glm::length(n);
+        n = length > 1e-6f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        float z = std::max(n.z, 0.05f);
+        float sx = -n.x / z, sy = -n.y / z;
+        m4[4 * i] = sx;
+        m4[4 * i + 1] = sy;
+        m4[4 * i + 2] = sx * sx;
+        m4[4 * i + 3] = sy * sy;
+        mxy[i] = sx * sy;
+    }
+    int levels = 1 + int(std::floor(std::log2(float(std::max(data.width, data.height)))));
+    moments = gl::createTexture2D(GL_RGBA16F, data.width, data.height, levels);
+    cross = gl::createTexture2D(GL_R16F, data.width, data.height, levels);
+    glTextureSubImage2D(moments.id(), 0, 0, 0, data.width, data.height, GL_RGBA, GL_FLOAT, m4.data());
+    glTextureSubImage2D(cross.id(), 0, 0, 0, data.width, data.height, GL_RED, GL_FLOAT, mxy.data());
+    for (const gl::Texture* t : {&moments, &cross}) {
+        glGenerateTextureMipmap(t->id());
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, glWrap(data.sampler.wrapS));
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, glWrap(data.sampler.wrapT));
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, data.sampler.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, data.sampler.nearestMag ? GL_NEAREST : GL_LINEAR);
+        if (GLAD_GL_EXT_texture_filter_anisotropic && filtersAnisotropically(data))
+            glTextureParameterf(t->id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 16.0f);
+    }
+}
+
 }  // namespace
+
+void GpuScene::ensureLeanMaps(const Scene& scene) const {
+    if (leanMapsMade_) return;
+    leanMapsMade_ = true;
+    leanMoments_.resize(textures_.size());
+    leanCross_.resize(textures_.size());
+    for (const Material& m : scene.materials) {
+        int index = m.normalTexture;
+        if (index < 0 || index >= int(scene.textures.size()) || index >= int(textures_.size()) || leanMoments_[index])
+            continue;
+        uploadLeanMaps(scene.textures[size_t(index)], leanMoments_[size_t(index)], leanCross_[size_t(index)]);
+    }
+}
 
 GpuScene::GpuScene(const Scene& scene) {
     static std::atomic<uint64_t> nextSerial{1};
@@ -186,6 +233,13 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
                 mask |= 1 << (UNIT_MATERIAL_CLEARCOAT + k);
             }
         }
+    }
+    // LEAN maps of the normal texture (G-buffer pass, after ensureLeanMaps): mask bit 9.
+    if (normalMatrix && !forward && material.normalTexture >= 0 && material.normalTexture < int(leanMoments_.size()) &&
+        leanMoments_[size_t(material.normalTexture)]) {
+        glBindTextureUnit(UNIT_MATERIAL_LEAN_MOMENTS, leanMoments_[size_t(material.normalTexture)].id());
+        glBindTextureUnit(UNIT_MATERIAL_LEAN_CROSS, leanCross_[size_t(material.normalTexture)].id());
+        mask |= 1 << 9;
     }
     glUniform1i(3, mask);
     glUniformMatrix3fv(4, 1, GL_FALSE, glm::value_ptr(material.uvTransform));

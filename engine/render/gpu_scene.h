@@ -53,6 +53,12 @@ public:
     // GL_TEXTURE_MAX_ANISOTROPY of the mipmapped linear material textures (texture_anisotropy); a no-op when
     // unchanged, so the renderer calls it every frame.
     void setTextureAnisotropy(float maxAnisotropy) const;
+    // LEAN maps (Olano & Baker 2010) of every normal texture, for glint methods that filter normal maps
+    // (GlintMethod::slopeCovariance): per texel the tangent-space slope m = -n.xy / n.z of the normal map and its
+    // second moments, E[m] and E[m m^T] after mip filtering (the GL box filter averages moments exactly).
+    // Made on the first call (RGBA16F + R16F with mips: 13 bytes per texel of the normal map); bound per draw at
+    // UNIT_MATERIAL_LEAN_MOMENTS / _CROSS (mask bit 9) by the G-buffer pass's draws afterwards.
+    void ensureLeanMaps(const Scene& scene) const;
     // Mesh-space chunks of a mesh (bounds for culling and for the shadow maps' scene bounds).
     const std::vector<MeshChunk>& meshChunks(uint32_t mesh) const { return meshes_[mesh].chunks; }
     size_t meshCount() const { return meshes_.size(); }
@@ -81,6 +87,8 @@ private:
     };
     std::vector<MeshBuffers> meshes_;
     std::vector<gl::Texture> textures_;
+    mutable std::vector<gl::Texture> leanMoments_, leanCross_;   // per texture; empty ones for non-normal maps
+    mutable bool leanMapsMade_ = false;
     std::vector<bool> anisotropic_;            // per texture: mipmapped and linear (anisotropy applies)
     mutable float textureAnisotropy_ = 16.0f;  // GL texture state, set through a const scene
     gl::Buffer materials_, lights_;

@@ -214,15 +214,6 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
     }
     float scale = settings.value(param::light_intensity);
     for (Light& light : scene.lights) light.intensity *= scale;
-    if (float turn = settings.value(param::light_turn); turn != 0.0f) {
-        // Directions and positions alike (a point light circles the y axis), so h moves the same way everywhere.
-        float c = std::cos(glm::radians(turn)), s = std::sin(glm::radians(turn));
-        auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
-        for (Light& light : scene.lights) {
-            light.vector = rotate(light.vector);
-            light.spotDirection = rotate(light.spotDirection);
-        }
-    }
     int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
@@ -237,6 +228,16 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
                                                           v.x * std::sin(angle) + v.z * std::cos(angle)))
                                : v + glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
             scene.lights.push_back(extra);
+        }
+    }
+    if (float turn = settings.value(param::light_turn); turn != 0.0f) {
+        // After light.count, so added lights turn with the first. Directions and positions alike (a point light
+        // circles the y axis), so h moves the same way everywhere.
+        const float c = std::cos(glm::radians(turn)), s = std::sin(glm::radians(turn));
+        auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
+        for (Light& light : scene.lights) {
+            light.vector = rotate(light.vector);
+            light.spotDirection = rotate(light.spotDirection);
         }
     }
 }

@@ -29,6 +29,9 @@
 #define UNIT_GBUFFER_BASE_COLOR_MASK 4
 #define UNIT_GBUFFER_DEPTH 5         // reversed-Z depth
 #define UNIT_GBUFFER_CLEARCOAT 30    // G-buffer colour target 5: coat normal (octahedral), coat factor, coat roughness
+// G-buffer colour target 6 (slope covariance of the LEAN-filtered normal map), lighting pass only, for methods that
+// declare GlintMethod::slopeCovariance: on the last method unit, which such methods leave free.
+#define UNIT_GBUFFER_SLOPE_COVARIANCE 15
 #define UNIT_ENV_SPECULAR 6          // samplerCubeArray: the unfiltered environment, layer = NDF (rung 0 of the ladder)
 #define UNIT_ENV_BRDF_LUT 7          // sampler2D: split-sum table
 #define UNIT_METHOD_FIRST 8          // glint methods: 8..15
@@ -60,6 +63,10 @@
 #define UNIT_FORWARD_CLEARCOAT 12
 #define UNIT_FORWARD_CLEARCOAT_ROUGHNESS 13
 #define UNIT_FORWARD_CLEARCOAT_NORMAL 14
+// LEAN maps (Olano & Baker 2010) of the normal texture, G-buffer pass only, for glint methods that filter normal
+// maps (GlintMethod::slopeCovariance; render/gpu_scene.h): mean slope and second moments.
+#define UNIT_MATERIAL_LEAN_MOMENTS 9   // RGBA16F: E[m_x], E[m_y], E[m_x^2], E[m_y^2]
+#define UNIT_MATERIAL_LEAN_CROSS 10    // R16F: E[m_x m_y]
 
 // Ambient-occlusion passes (shaders/ao/: gtao.frag, ao_resolve.frag), before lighting.
 #define UNIT_AO_DEPTH 0

@@ -6,6 +6,9 @@
 //   4 RGBA8    base colour.rgb, glint density mask
 //   5 RGBA16F  clear coat normal (octahedral).xy, clear coat, clear coat roughness (KHR_materials_clearcoat;
 //              zero on uncoated materials; the lighting pass reads it at UNIT_GBUFFER_CLEARCOAT)
+//   6 RGBA16F  with GBUFFER_SLOPE_COVARIANCE only (glint methods that filter normal maps): the LEAN-filtered normal
+//              map's slope covariance Sigma_xx, Sigma_yy, Sigma_xy (zero without a normal map); the normal is then
+//              the LEAN mean slope's (Olano & Baker 2010; Chermain et al. 2021)
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "common/footprint.glsl"
@@ -31,6 +34,11 @@ layout(binding = UNIT_MATERIAL_GLINT_MASK) uniform sampler2D t_glintMask;
 layout(binding = UNIT_MATERIAL_CLEARCOAT) uniform sampler2D t_clearcoat;                     // R
 layout(binding = UNIT_MATERIAL_CLEARCOAT_ROUGHNESS) uniform sampler2D t_clearcoatRoughness;  // G
 layout(binding = UNIT_MATERIAL_CLEARCOAT_NORMAL) uniform sampler2D t_clearcoatNormal;
+#ifdef GBUFFER_SLOPE_COVARIANCE
+layout(binding = UNIT_MATERIAL_LEAN_MOMENTS) uniform sampler2D t_leanMoments;   // E[m], E[m_x^2], E[m_y^2]
+layout(binding = UNIT_MATERIAL_LEAN_CROSS) uniform sampler2D t_leanCross;       // E[m_x m_y]
+layout(location = 6) out vec4 o_slopeCovariance;
+#endif
 
 layout(location = 0) out vec4 o_uvDuvdx;
 layout(location = 1) out vec4 o_duvdyMaterial;
@@ -67,6 +75,23 @@ void main() {
     float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
     ClearcoatMaterial coat = clearcoatMaterial(material, u_textureMask, t_clearcoat, t_clearcoatRoughness,
                                                t_clearcoatNormal, textureUv, footprint, n, t, bitangentSign);
+    vec3 slopeCovariance = vec3(0.0);
+#ifdef GBUFFER_SLOPE_COVARIANCE
+    if ((u_textureMask & 4) != 0 && (u_textureMask & 512) != 0) {
+        // LEAN mapping: the filtered first and second moments of the normal map's slopes over the pixel's
+        // footprint (the same lookups as the normal map's); the covariance goes to the glint method, the mean
+        // slope gives the normal.
+        vec4 moments = sampleTexture(t_leanMoments, textureUv, footprint);
+        float crossMoment = sampleTexture(t_leanCross, textureUv, footprint).r;
+        vec2 meanSlope = moments.xy;
+        slopeCovariance = vec3(max(moments.z - meanSlope.x * meanSlope.x, 0.0),
+                               max(moments.w - meanSlope.y * meanSlope.y, 0.0), crossMoment - meanSlope.x * meanSlope.y);
+        vec3 tn = normalize(vec3(-meanSlope, 1.0));
+        vec3 b = bitangentSign * cross(n, t);
+        n = normalize(tn.x * t + tn.y * b + tn.z * n);
+        t = normalize(t - n * dot(n, t));
+    } else
+#endif
     if ((u_textureMask & 4) != 0) {
         vec3 tn = sampleTexture(t_normal, textureUv, footprint).xyz * 2.0 - 1.0;
         vec3 b = bitangentSign * cross(n, t);
@@ -80,4 +105,7 @@ void main() {
     o_tangentMetallic = vec4(t, metallic);
     o_baseColorMask = vec4(baseColor.rgb, glintMask);
     o_clearcoat = coat.intensity > 0.0 ? vec4(octahedralEncode(coat.n), coat.intensity, coat.roughness) : vec4(0.0);
+#ifdef GBUFFER_SLOPE_COVARIANCE
+    o_slopeCovariance = vec4(slopeCovariance, 0.0);
+#endif
 }

@@ -41,6 +41,10 @@ layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
 layout(binding = UNIT_GBUFFER_CLEARCOAT) uniform sampler2D g_clearcoat;   // KHR_materials_clearcoat (gbuffer.frag)
 // rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
 layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
+#ifdef GLINT_SLOPE_COVARIANCE
+// G-buffer target 6: the LEAN-filtered normal map's slope covariance (GlintMethod::slopeCovariance).
+layout(binding = UNIT_GBUFFER_SLOPE_COVARIANCE) uniform sampler2D g_slopeCovariance;
+#endif
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
@@ -83,6 +87,39 @@ void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
     position = q;
 }
 
+#ifdef GLINT_SURFACE_DERIVATIVES
+// For methods that filter their NDF over the pixel's range of half vectors (GlintMethod::surfaceDerivatives;
+// Chermain et al. 2021's GGAA): the screen-space derivatives of the surface, which a full-screen pass cannot take
+// with dFdx. Of the two neighbours along each axis the one nearer the pixel's tangent plane (|offset . n| over
+// |offset| below 0.5) gives a one-sided difference of the G-buffer's position and shading normal; across an edge
+// (no such neighbour) the position moves in the tangent plane and the normal does not change.
+void glintSurfaceDerivatives(inout GlintSurface s, ivec2 pixel, vec3 gbufferPosition, vec3 position) {
+    s.viewDistance = distance(u_cameraPosition.xyz, position);
+    vec2 centre = vec2(pixel) + 0.5;
+    vec3 planeCentre = tangentPlanePoint(centre, position, s.n);
+    for (int axis = 0; axis < 2; ++axis) {
+        ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+        vec3 dp = tangentPlanePoint(centre + vec2(step), position, s.n) - planeCentre;
+        vec3 dn = vec3(0.0);
+        float best = 0.5;
+        for (int side = -1; side <= 1; side += 2) {
+            ivec2 q = pixel + side * step;
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, u_viewport.xy))) continue;
+            float d = texelFetch(g_depth, q, 0).r;
+            if (d <= 0.0) continue;
+            vec3 offset = worldPosition(q, d) - gbufferPosition;
+            float deviation = abs(dot(offset, s.n)) / max(length(offset), 1e-20);
+            if (deviation < best) {
+                best = deviation;
+                dp = float(side) * offset;
+                dn = float(side) * (normalize(texelFetch(g_normalAlpha, q, 0).xyz) - s.n);
+            }
+        }
+        if (axis == 0) { s.dpdx = dp; s.dndx = dn; } else { s.dpdy = dp; s.dndy = dn; }
+    }
+}
+#endif
+
 // The pixel as the G-buffer holds it (layout in frame/gbuffer.frag), with what the shading needs of its material.
 struct PixelSurface {
     GlintSurface s;
@@ -116,6 +153,7 @@ PixelSurface readPixelSurface(ivec2 pixel, float depth) {
     p.s.n = normalize(normalAlpha.xyz);
     p.s.t = normalize(tangentMetallic.xyz - p.s.n * dot(p.s.n, tangentMetallic.xyz));
     p.s.b = duvdyMaterial.w * cross(p.s.n, p.s.t);
+    clearGlintSurfaceExtras(p.s);
 #ifdef NON_GLINTY_PIXELS
     // The pixels lighting_class.frag did not mark glinty (render/frame/lighting_pass.h): the compiler drops the
     // method's code, and every other term is this shader's own.
@@ -134,6 +172,12 @@ PixelSurface readPixelSurface(ivec2 pixel, float depth) {
     // geometric edges of glinty surfaces are still anti-aliased.
     if (p.glinty && u_jitter.z > 0.5) unjitterGlintFootprint(p.s, p.position);
     p.s.position = p.position;
+#if defined(GLINT_SLOPE_COVARIANCE) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) p.s.slopeCovariance = texelFetch(g_slopeCovariance, pixel, 0).xyz;
+#endif
+#if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) glintSurfaceDerivatives(p.s, pixel, p.gbufferPosition, p.position);
+#endif
     p.baseColor = baseColorMask.rgb;
     p.metallic = tangentMetallic.w;
     return p;
@@ -221,6 +265,9 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
         if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
+#ifdef GLINT_SURFACE_DERIVATIVES
+        g_glintLightDistance = u_lights[i].vectorType.w < 0.5 ? 0.0 : distance(u_lights[i].vectorType.xyz, p.position);
+#endif
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = p.glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
@@ -323,8 +370,14 @@ void main() {
     // Environment lighting by the selected IBL mode (shaders/environment/ibl/README.md), or the constant ambient
     // when the environment is off (--env none). Ambient occlusion darkens this term only, never the lights.
     vec4 occlusion = ambientOcclusion(p, maskTaps, maskTapsValid);
+    // A method may widen the roughness the environment sees (GLINT_ENVIRONMENT_ALPHA, shaders/glints/README.md:
+    // Chermain et al. 2021 light the environment with the LEAN-filtered roughness).
+    GlintSurface environmentSurface = p.s;
+#if defined(GLINT_ENVIRONMENT_ALPHA) && !defined(NON_GLINTY_PIXELS)
+    if (p.glinty) environmentSurface.alpha = glintEnvironmentAlpha(glint, p.s);
+#endif
     vec3 radiance = occlusion.rgb * (envEnabled()
-        ? iblRadiance(glint, p.s, wo, toEye, worldToShading, diffuseAlbedo, f0, p.glinty, u_sample.x)
+        ? iblRadiance(glint, environmentSurface, wo, toEye, worldToShading, diffuseAlbedo, f0, p.glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
     vec3 coatRadiance = vec3(0.0);
     if (coated) coatRadiance += occlusion.rgb * coat.weight * clearcoatEnvironment(coat, p.position, toEye);

@@ -20,6 +20,9 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     desc.defines = {method.define, ibl.define};
     // The method writes targets of its own (shaders/glints/README.md, "Lighting targets").
     if (!method.lightingTargets.empty()) desc.defines.push_back("GLINT_METHOD_TARGETS");
+    // The method filters over the pixel's range of half vectors / reads LEAN-filtered normal maps (methods.h).
+    if (method.surfaceDerivatives) desc.defines.push_back("GLINT_SURFACE_DERIVATIVES");
+    if (method.slopeCovariance) desc.defines.push_back("GLINT_SLOPE_COVARIANCE");
     if (shadows) desc.defines.push_back("SHADOWS");
     if (nonGlinty) {
         static const std::string nonGlintyDefine = "NON_GLINTY_PIXELS";   // (a named string: GCC 12's -Warray-bounds
@@ -222,8 +225,13 @@ void LightingPass::bindInputs(const FrameContext& frame) {
     if (shadows_)
         bindShadowInputs(frame.resources.read(FrameResource::ShadowMaps), frame.resources.read(FrameResource::ShadowMask));
     const FrameImage& gbuffer = frame.resources.read(FrameResource::GBuffer);
+    // Target 5 (the clear coat) and target 6 (the slope covariance, published only for methods that read it) sit
+    // on units of their own.
     for (int i = 0; i < int(gbuffer.textures.size()); ++i)
-        glBindTextureUnit(i == 5 ? GLuint(UNIT_GBUFFER_CLEARCOAT) : GLuint(UNIT_GBUFFER_FIRST + i), gbuffer.texture(size_t(i)));
+        glBindTextureUnit(i == 5   ? GLuint(UNIT_GBUFFER_CLEARCOAT)
+                          : i == 6 ? GLuint(UNIT_GBUFFER_SLOPE_COVARIANCE)
+                                   : GLuint(UNIT_GBUFFER_FIRST + i),
+                          gbuffer.texture(size_t(i)));
     glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.resources.read(FrameResource::Depth).texture());
     glBindTextureUnit(UNIT_AMBIENT_OCCLUSION, frame.resources.read(FrameResource::AmbientOcclusion).texture());
 }
