@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "scene/gltf_area_lights.h"
 #include "scene/gltf_glint_material.h"
 #include "scene/scene_limits.h"
 #include "scene/uv_transform.h"
@@ -40,7 +41,8 @@ enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
     static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
                                                     "KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                                    "KHR_materials_clearcoat", "GLIMMER_materials_glint"};
+                                                    "KHR_materials_clearcoat", "GLIMMER_materials_glint",
+                                                    "GLIMMER_lights_area"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
@@ -738,6 +740,7 @@ private:
     }
 
     void walkNodes() {
+        areaLights_ = readAreaLights(model_, file_);   // GLIMMER_lights_area: bad values are one-line errors
         // The default scene (or scene 0); a file without scenes shows every mesh once at the origin.
         // Nodes may share children (a DAG is legal glTF), so the number of paths, not of nodes, bounds the work:
         // visits and instances are counted against kMaxInstances as they are made.
@@ -770,6 +773,8 @@ private:
             }
             if (node.camera >= 0) addCamera(element(model_.cameras, node.camera, "camera", file_), node, world);
             if (int light = nodeLight(node, file_); light >= 0) gltfLights_.push_back(punctualLight(model_, light, world, file_));
+            if (int light = nodeAreaLight(node, file_); light >= 0)
+                gltfLights_.push_back(placeAreaLight(areaLights_, light, world, file_));
             for (int child : node.children) visit(child, world, depth + 1);
             onPath[size_t(nodeIndex)] = false;
         };
@@ -879,6 +884,7 @@ private:
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> primitivesOfMesh_;
     std::vector<Camera> gltfCameras_;
     std::vector<Light> gltfLights_;
+    std::vector<Light> areaLights_;   // GLIMMER_lights_area's list, placed by the nodes that refer to them
     std::vector<std::pair<std::string, std::string>> imageFileProblems_;
     int defaultMaterial_ = -1;
     uint64_t totalVertices_ = 0, totalIndices_ = 0, skippedInstances_ = 0;
