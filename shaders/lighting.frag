@@ -11,6 +11,8 @@
 #include "common/clearcoat.glsl"
 #include "common/light_incidence.glsl"
 #include "common/plane_aware_upsample.glsl"
+#include "lights/ltc.glsl"
+#include "lights/area_light.glsl"
 #ifdef SHADOWS
 #include "common/shadows.glsl"
 #endif
@@ -78,6 +80,34 @@ void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
     s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
     s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
     position = q;
+}
+
+// Solid angle (sr) of a punctual or directional light seen from `position` (Kneiphof & Klein 2024: every light has
+// one): the sun's disk (spotOffsetRange.z, from its angular diameter), a point or spot light's sphere of its
+// radius (spotOffsetRange.z; 0 for a punctual light).
+float punctualSolidAngle(GpuLight light, vec3 position) {
+    if (light.vectorType.w < 0.5) return light.spotOffsetRange.z;
+    vec3 d = light.vectorType.xyz - position;
+    float sin2 = min(light.spotOffsetRange.z * light.spotOffsetRange.z / max(dot(d, d), 1e-12), 1.0);
+    return 2.0 * PI * (1.0 - sqrt(1.0 - sin2));
+}
+
+// The glint factor of an area light (multiplies its smooth LTC specular; expectation 1). Methods that define
+// GLINT_AREA_LIGHTS compute it themselves (glintAreaFactor); for the others it is their NDF at the light's centre
+// direction over the smooth NDF there: the light's glints are those of a point light at its centre
+// (shaders/glints/README.md "Extended lights").
+vec3 areaGlintFactor(GlintPixel glint, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+#ifdef GLINT_AREA_LIGHTS
+    return glintAreaFactor(glint, s, h, wi, wo);
+#else
+    float smoothD = D_smooth(h, s.alpha, s.ndf);
+    if (!(smoothD > 1e-30)) return vec3(1.0);
+#ifdef GLINT_COLOR_D
+    return glintColorD(glint, s, h, wi, wo) / smoothD;
+#else
+    return vec3(glintD(glint, s, h, wi, wo) / smoothD);
+#endif
+#endif
 }
 
 vec3 finiteOrZero(vec3 c) {
@@ -200,6 +230,7 @@ void main() {
     vec3 radiance = occlusion.rgb * (envEnabled()
         ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
         : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
+    vec3 environmentGlints = occlusion.rgb * g_environmentGlintPart;   // environment glints (the IBL mode's)
     if (coated) {
         // The coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror
         // direction, from the prefiltered map and the reflection probes where the frame binds them (count 0
@@ -215,14 +246,17 @@ void main() {
     float firstLightD = 0.0;
     float firstLightVisibility = 0.0;
     vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
-    vec3 glintPart = vec3(0.0);     // otherwise: the same term, left in o_color and also written to o_glintPart
+    vec3 glintPart = environmentGlints;   // otherwise: the same term, left in o_color and also written to o_glintPart
     int lightCount = int(u_exposure.y);
+    int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
 #ifdef SHADOWS
     vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
     // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
     shadowMaskVisibility(pixel, maskTaps, maskVisibility);
 #endif
-    for (int i = 0; i < lightCount; ++i) {
+    // Punctual and directional lights. Area lights follow in a loop of their own: llvmpipe executes both sides of a
+    // branch, so one loop would make every light pay for the LTC integrals.
+    for (int i = 0; i < lightCount - areaLightCount; ++i) {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
@@ -244,6 +278,11 @@ void main() {
         if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
         if (wi.z <= 0.0 || wo.z <= 0.0) continue;
         vec3 h = normalize(wi + wo);
+        // The light's size for the glint methods (GlintLight): its solid angle and the integral of D(h) / (4 |l.h|)
+        // over it, D(h) Omega / (4 (l.h)) for a light this small (Kneiphof & Klein 2024, Sec. 4.3).
+        g_glintLight.area = false;
+        g_glintLight.solidAngle = punctualSolidAngle(u_lights[i], position);
+        g_glintLight.ndfIntegral = D_smooth(h, s.alpha, s.ndf) * g_glintLight.solidAngle / (4.0 * max(dot(wi, h), 1e-4));
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
@@ -263,6 +302,58 @@ void main() {
         if (glinty) glintPart += specular * irradiance * wi.z;
 #endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
+    }
+
+    // Area lights (lights/area_light.glsl): Lambertian emitters of radiance L; diffuse = albedo x L x their form
+    // factor, specular = L x (f0 A + B) x the specular LTC's integral over them (Heitz et al. 2016, Eq. 7 and
+    // Sec. 4.3), times the glint factor of the method on glinty pixels (Kneiphof & Klein 2024, Sec. 4: the glint
+    // factor multiplies the LTC specular).
+    if (areaLightCount > 0 && wo.z > 0.0) {
+        LtcPixel ltc = ltcSetup(s.n, toEye, s.alpha, s.ndf);   // once per pixel, shared by the area lights
+        vec3 specularAlbedo = f0 * ltc.splitSum.x + ltc.splitSum.y;
+        for (int i = lightCount - areaLightCount; i < lightCount; ++i) {
+            AreaLightGeometry g = areaLightGeometry(u_lights[i], position, ltc.toFrame);
+            if (!g.visible) continue;
+#ifdef SHADOWS
+            float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+            float visibility = 1.0;
+#endif
+            if (i == 0) firstLightVisibility = visibility;
+            if (visibility <= 0.0) continue;
+            vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
+            // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of the
+            // integrals in the program; ltcLoopCount keeps the compiler from unrolling it).
+            float integrals[2];
+            for (int k = 0; k < ltcLoopCount(2); ++k)
+                integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV, k == 0 ? mat3(1.0) : ltc.invSpecular);
+            // Spheres: the cap's exact form factor (the disk of their silhouette gives the same, less exactly).
+            float diffuse = g.sinSigma2 > 0.0 ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : integrals[0];
+            float specularIntegral = integrals[1];
+            vec3 specular = specularAlbedo * specularIntegral;
+            if (glinty && specularIntegral > 0.0) {
+                // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
+                // angular cell of deliot2023's grid and the NDF value of the fallback.
+                vec3 wi = worldToShading * g.towardCentre;
+                vec3 h = normalize(vec3(wi.xy, max(wi.z, 1e-4)) + wo);
+                g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral, g.shape,
+                                          g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
+                specular *= areaGlintFactor(glint, s, h, wi, wo);
+#ifdef GLINT_POST_PASS
+                lightGlints += specular * L;
+                specular = vec3(0.0);
+#else
+                glintPart += specular * L;
+#endif
+            }
+            radiance += (diffuseAlbedo * diffuse + specular) * L;
+            if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
+                // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
+                vec3 towardLight, irradiance;
+                lightIncidence(u_lights[i], position, towardLight, irradiance);
+                coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
+            }
+        }
     }
 
     if (coated) {

@@ -166,7 +166,8 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
             u.cameraPosition = glm::vec4(camera.position, 1.0f);
             u.skyColor = glm::vec4(scene.skyColor, 1.0f);
             u.viewport = {size, size, 0, 0};
-            u.exposure = {1.0f, float(gpuScene.lightCount()), captureSettings.common_("ambient"), 0.0f};
+            u.exposure = {1.0f, float(gpuScene.lightCount()), captureSettings.common_("ambient"),
+                          float(gpuScene.areaLightCount())};
             glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(u), &u);
             const FrameContext frame{view,     gpuScene, camera,  captureSettings, targets_, environment, nullptr,
                                      nullptr,  size,     size,    false,           1.0f,     emptyVao_.id(),

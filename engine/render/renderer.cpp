@@ -31,7 +31,7 @@
 namespace glimmer {
 
 Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings)
-    : shaderRoot_(std::move(shaderRoot)), settings_(settings), environment_(shaderRoot_) {
+    : shaderRoot_(std::move(shaderRoot)), settings_(settings), environment_(shaderRoot_), environmentGlints_(shaderRoot_) {
     gl::enableDebugOutput();
     frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
@@ -252,6 +252,8 @@ void Renderer::runPass(Pass& pass, const FrameContext& frame) {
 void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, int width, int height,
                       bool measurePasses) {
     prepareEnvironment(scene);
+    ltcTable_.bind();   // on its own unit: every lighting program of the frame reads it, probe captures included
+    environmentGlints_.bind(false);   // probe captures draw no environment glints (bound again below)
     // IBL-mode resources may render (per-object environment maps), so they update before any state of this frame.
     if (iblResources_)
         iblResources_->prepare(settings_.iblModeValues(settings_.ibl), scene,
@@ -280,6 +282,17 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
         recordOnDemand("probes.capture", probeUpdate.captureMs, measurePasses);
         recordOnDemand("probes.prefilter", probeUpdate.prefilterMs, measurePasses);
     }
+    // Environment glints (Kneiphof & Klein 2025) for a method that draws them under an IBL mode that has the
+    // levels parameter: rebuilt only when the environment, the probes or the parameters changed.
+    const EnvironmentGlintSettings glintSettings = environmentGlintSettings(ibl, settings_.iblModeValues(ibl.id));
+    const bool environmentGlints = findGlintMethod(settings_.method).environmentGlints && glintSettings.levels > 0 &&
+                                   environment_.enabled();
+    if (environmentGlints)
+        for (const auto& [name, ms] : environmentGlints_.update(glintSettings, environment_.sourceCube(),
+                                                                Environment::kFaceSize, environment_.key(),
+                                                                probesActive ? probes_.get() : nullptr, measurePasses))
+            recordOnDemand(name, ms, measurePasses);
+    environmentGlints_.bind(environmentGlints);
 
     // Sky visibility of a new scene (baked or loaded from the cache) before any pass of this frame.
     for (const PassTiming& ran : ambientOcclusion_->prepare(settings_, scene, gpuScene.serial(), width, height))
@@ -311,7 +324,7 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     uniforms.skyColor = glm::vec4(scene.skyColor, 1.0f);
     uniforms.viewport = {width, height, int(frameIndex_), settings_.debugView};
     uniforms.exposure = {std::exp2(settings_.common_("exposure")), float(gpuScene.lightCount()),
-                         settings_.common_("ambient"), 0.0f};
+                         settings_.common_("ambient"), float(gpuScene.areaLightCount())};
     uniforms.sample = {ibl.accumulates ? sampleIndex_ : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(uniforms), &uniforms);
     uploadMethodParams(scene);

@@ -17,6 +17,8 @@
 #include "render/environment.h"
 #include "render/gbuffer.h"
 #include "render/gpu_scene.h"
+#include "render/lights/ltc_texture.h"
+#include "environment/environment_glints.h"
 #include "render/passes/pass.h"
 #include "render/passes/pass_timer.h"
 #include "render/reflection_probes.h"
@@ -157,6 +159,8 @@ private:
     std::unique_ptr<RendererCapture> capture_;   // how IBL modes render the scene (per-object maps)
     std::unique_ptr<ReflectionProbes> probes_;
     Environment environment_;
+    LtcTexture ltcTable_;   // the area lights' LTC tables, bound for every frame (render/lights/)
+    EnvironmentGlints environmentGlints_;   // Kneiphof & Klein 2025's levels for methods with environment glints
     FrameTargets targets_;
     gl::Buffer frameUniforms_, methodParams_, iblParams_;
     gl::Buffer materialMethodParams_;   // per-material method parameters (BINDING_MATERIAL_METHOD_PARAMS)

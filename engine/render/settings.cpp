@@ -20,6 +20,11 @@ const std::vector<CommonParam>& commonParams() {
         {{"light.intensity", 1.0f, 0.0f, 1000.0f, "multiplier on every light's intensity"}},
         {{"light.count", 0.0f, 0.0f, 64.0f,
           "number of lights: 0 keeps the scene's; more adds lights around the first one's direction", {}, true}},
+        {{"light.sun_diameter", 0.53f, 0.0f, 10.0f,
+          "angular diameter (degrees) of every directional light: the solid angle its glints count against"}, true},
+        {{"light.area_size", 1.0f, 0.1f, 10.0f,
+          "scale of every area light's size (rect width and height, disk and sphere radius) at equal intensity"}},
+        {{"light.area_intensity", 1.0f, 0.0f, 100.0f, "multiplier on every area light's intensity"}},
         {{"material.alpha", 0.3f, 0.001f, 1.0f, "NDF roughness alpha of every material"}, true},
         {{"material.metallic", 1.0f, 0.0f, 1.0f, "metalness of every material"}, true},
         {{"material.ndf", 0.0f, 0.0f, 1.0f, "microfacet distribution of every material", {"ggx", "beckmann"}}, true},
@@ -211,7 +216,18 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
             m.clearcoatRoughness = settings.common_("material.clearcoat_roughness");
     }
     float scale = settings.common_("light.intensity");
-    for (Light& light : scene.lights) light.intensity *= scale;
+    const float areaSize = settings.common_("light.area_size"), areaIntensity = settings.common_("light.area_intensity");
+    for (Light& light : scene.lights) {
+        light.intensity *= scale;
+        if (light.type == LightType::Directional && settings.isSet("light.sun_diameter"))
+            light.angularDiameter = glm::radians(settings.common_("light.sun_diameter"));
+        if (light.isArea()) {
+            light.intensity *= areaIntensity;
+            light.width *= areaSize;
+            light.height *= areaSize;
+            light.radius *= areaSize;
+        }
+    }
     int wanted = int(settings.common_("light.count"));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
