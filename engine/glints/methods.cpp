@@ -40,7 +40,22 @@ static GlintMethod deliot2023Method() {
               {"projected", "lobe"}},
              {"gate", 0.0f, 0.0f, 1.0f,
               "Eq. 18 gate: soft = smooth step of half-width 0.1 sat(10 P1) sat(10 (1 - P1)) (authors' code); hard",
-              {"soft", "hard"}}},
+              {"soft", "hard"}},
+             // Kneiphof & Klein 2024 (glints under area lights; shaders/glints/deliot2023.glsl, docs/area_lights.md).
+             {"probability", 0.0f, 0.0f, 1.0f,
+              "facet success probability: kk24 = the facets whose mirror direction hits the light, from its solid "
+              "angle or LTC integral over the total NDF (Kneiphof & Klein 2024); db23 = Eq. 4's R D(h) / D(n)",
+              {"kk24", "db23"}},
+             {"total_ndf", 0.0f, 0.0f, 1.0f,
+              "kk24's denominator, the integral of D over the hemisphere: fit = 1 + alpha^1.4109 (their GGX fit; "
+              "Beckmann always exact); exact", {"fit", "exact"}},
+             {"light_integral", 0.0f, 0.0f, 1.0f,
+              "kk24 under area lights: the NDF-only term times the specular LTC's integral (their default) or the "
+              "dedicated NDF-only LTC's", {"specular_ltc", "ndf_ltc"}},
+             {"facets", 0.0f, 0.0f, 1.0f,
+              "kk24: cone = facets reflect within pi alpha^2 R steradians, widened by the light (ours; punctual "
+              "lights keep their glints); mirror = the paper's mirror facets (a light without size shows none)",
+              {"cone", "mirror"}}},
             createDeliot2023Resources};
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, true,
@@ -52,6 +67,7 @@ static GlintMethod deliot2023Method() {
          "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
          "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
     method.convergence = {{"log_density", 40.0f}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
+    method.environmentGlints = true;   // Kneiphof & Klein 2025 (glintEnvironmentFactor)
     return method;
 }
 
@@ -157,6 +173,7 @@ static GlintMethod wang2020Method() {
               "taps of the Gaussian blur of the glints (Sec. 4.4; paper 3; 1 = none; odd)", {}, true}},
             createWang2020Resources};
     method.glintPostPass = true;   // Sec. 4.4: the lighting pass leaves the glints to the post pass
+    method.defaultIbl = "wang2020";   // Sec. 4: its own environment glints (the IBL mode of the same name)
     method.createPasses = glintpost::createPasses;
     // N, gamma and roughness shape the quadtree and the DPF tables, built once for the densest glinty material;
     // the others thin its particles (shaders/glints/wang2020.glsl) and share its gamma and tabulated roughness.

@@ -110,6 +110,9 @@ public:
             if (!from) fail(keyLines_["resources"], "resources: '" + method_.resourcesFrom + "' is not a built-in method");
             if (!from->createResources) fail(keyLines_["resources"], "resources: built-in method '" + method_.resourcesFrom + "' has no GPU resources");
             method_.createResources = from->createResources;
+            // A method built on a built-in's code (and resources) draws its environment glints when that code does
+            // (deliot2023's glintEnvironmentFactor): the renderer then builds the environment's levels for it too.
+            method_.environmentGlints = from->environmentGlints;
             // The borrowed resources are built from the shared values of the material the built-in chooses.
             for (const ParamSpec& p : method_.params)
                 if (p.name == from->sharedDataMaterial) method_.sharedDataMaterial = from->sharedDataMaterial;
