@@ -1,4 +1,4 @@
-// libFuzzer target: reading an environment image (the CPU half of render/environment.cpp's loading: format
+// libFuzzer target: reading an environment image (the CPU half of environment/environment.cpp's loading: format
 // check, header limits, decoding). The extension follows the input's magic so every allowed reader is reached.
 #include "core/error.h"
 #include "core/image_io.h"

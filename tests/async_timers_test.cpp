@@ -48,7 +48,7 @@ TEST(AsyncGpuTimers, ResultsArriveLateWithEveryPassNamedAndNoWallClock) {
 }
 
 // Issue 19: the first pass of the first frame on a fresh (surfaceless EGL) context reported the machine's uptime
-// as its GPU time (llvmpipe never executed the query's begin; render/passes/pass_timer.h). A GPU time can never
+// as its GPU time (llvmpipe never executed the query's begin; render/frame/pass_timer.h). A GPU time can never
 // exceed the wall time that contained the pass; a result that does is reported as none (NaN), in both modes.
 TEST(PassTimers, GpuTimeNeverExceedsTheWallTimeAroundThePass) {
     auto context = createHeadlessContext(Backend::Egl);

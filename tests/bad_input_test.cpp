@@ -243,7 +243,7 @@ namespace {
 
 // fuzz-hang-100226 (issue 14), rebuilt from generated content: a textured material with uvScale [65538, 2] made
 // llvmpipe's uncapped anisotropic filter scan millions of texels per pixel (minutes per frame). The G-buffer
-// now reads such footprints from a coarse level (shaders/gbuffer.frag): the render finishes in seconds.
+// now reads such footprints from a coarse level (shaders/frame/gbuffer.frag): the render finishes in seconds.
 TEST(BadInput, HugeUvScaleRendersInBoundedTime) {
     std::string dir = glimmer::test::makeTempDir("huge-uv-scale");
     std::vector<uint8_t> texture(64 * 64 * 4);

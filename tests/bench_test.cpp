@@ -16,7 +16,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "support/golden.h"
 #include "support/process.h"
 #include "ui/font.h"

@@ -12,7 +12,7 @@
 #include "core/image_io.h"
 #include "reference/brdf_reference.h"
 #include "reference/clearcoat_reference.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "support/process.h"

@@ -12,14 +12,14 @@
 
 #include "core/files.h"
 #include "gl/program.h"
-#include "glints/method_checks.h"
-#include "glints/method_probe.h"
+#include "checks/method_checks.h"
+#include "reference/method_probe.h"
 #include "reference/deliot2023_reference.h"
-#include "glints/deliot2023_resources.h"
+#include "glints/deliot2023/deliot2023_resources.h"
 #include "platform/context.h"
 #include "render/aov.h"
 #include "reference/brdf_reference.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
@@ -33,12 +33,12 @@ struct BinomialStats {
     double N, p, mean, variance, pZero, probAtLeastOne;
 };
 
-// Runs shaders/glints/deliot2023_binomial_stats.comp: every (uniform, Gaussian) pair of the method's noise
+// Runs shaders/glints/deliot2023/deliot2023_binomial_stats.comp: every (uniform, Gaussian) pair of the method's noise
 // texture (1024 x 1024 = 1,048,576 samples) through deliotGatedBinomial, per (N, p).
 std::vector<BinomialStats> shaderBinomialStats(const std::vector<glm::vec2>& configs, bool softGate = false) {
     gl::ProgramDesc desc;
     desc.name = "deliot2023_binomial_stats";
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023_binomial_stats.comp"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023/deliot2023_binomial_stats.comp"}};
     gl::Program program(defaultShaderDir(), desc);
     Deliot2023Resources resources;
     resources.bind();
@@ -447,7 +447,7 @@ TEST_P(Deliot2023Convergence, VeryHighDensityEqualsSmooth) {
     RenderResult ours = renderWith(scene, "deliot2023", glinty);
     RenderResult smooth = renderWith(scene, "smooth", common);
     ASSERT_EQ(ours.stats["counts"]["non_finite_values"].get<size_t>(), 0u);
-    // The measure check-method's convergence rule uses (glints/method_checks.h), held to 2 % on every pixel here.
+    // The measure check-method's convergence rule uses (checks/method_checks.h), held to 2 % on every pixel here.
     checks::SmoothGap gap = checks::gapToSmooth(ours.hdr, smooth.hdr, ours.width, ours.height, 2, 0.02);
     EXPECT_NEAR(gap.meanRatio, 1.0, 0.02) << scene << " " << ndf;
     EXPECT_EQ(gap.fractionAbove, 0.0) << scene << " " << ndf << ": worst relative error " << gap.worstPixelError;

@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "core/cache_file.h"
-#include "glints/wang2020_dpf.h"
+#include "glints/wang2020/wang2020_dpf.h"
 
 namespace fs = std::filesystem;
 namespace w = glimmer::wang2020;

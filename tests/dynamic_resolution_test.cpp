@@ -12,7 +12,7 @@
 #include "core/frame_times.h"
 #include "core/image_io.h"
 #include "render/dynamic_resolution.h"
-#include "render/upscale.h"
+#include "render/image/upscale.h"
 #include "support/process.h"
 
 namespace glimmer {

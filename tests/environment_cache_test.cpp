@@ -1,4 +1,4 @@
-// The environment precomputation's disk cache (render/environment_cache.h): a second Environment reads what the
+// The environment precomputation's disk cache (environment/environment_cache.h): a second Environment reads what the
 // first built, bit for bit; a damaged file, another image under the same path, or an edited shader is never
 // trusted; the cache can be turned off.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "platform/context.h"
-#include "render/environment.h"
+#include "environment/environment.h"
 
 namespace glimmer {
 namespace {

@@ -1,4 +1,4 @@
-// Environment glints (Kneiphof & Klein 2025; engine/environment/environment_glints.h, glints/deliot2023_multinomial.glsl):
+// Environment glints (Kneiphof & Klein 2025; engine/environment/environment_glints.h, glints/deliot2023/deliot2023_multinomial.glsl):
 // - the hierarchical multinomial on the method's own noise: each level's mean count is n p_i (within the statistics
 //   and the clamping's bias), the counts always sum to n, for K = 4 and 8, small and large n;
 // - the radiance levels span the environment's luminance above the black level (log-spaced), and the unfiltered
@@ -15,12 +15,12 @@
 
 #include "core/files.h"
 #include "environment/environment_glints.h"
-#include "glints/deliot2023_noise.h"
-#include "glints/deliot2023_resources.h"
+#include "glints/deliot2023/deliot2023_noise.h"
+#include "glints/deliot2023/deliot2023_resources.h"
 #include "glints/methods.h"
 #include "platform/context.h"
-#include "render/environment.h"
-#include "render/offscreen.h"
+#include "environment/environment.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer {
 namespace {
@@ -33,7 +33,7 @@ struct MultinomialStats {
 MultinomialStats multinomialStats(float n, int levels, const std::vector<float>& p) {
     gl::ProgramDesc desc;
     desc.name = "deliot2023_multinomial_stats";
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023_multinomial_stats.comp"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/deliot2023/deliot2023_multinomial_stats.comp"}};
     gl::Program program(defaultShaderDir(), desc);
     Deliot2023Resources resources;
     resources.bind();

@@ -14,7 +14,7 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "platform/context.h"
-#include "render/environment.h"
+#include "environment/environment.h"
 #include "reference/environment_reference.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
@@ -198,7 +198,7 @@ TEST(EnvironmentReference, ConventionsAreConsistent) {
     }
 }
 
-// The split-sum table computed by shaders/env/brdf_lut.comp (4096 Hammersley samples) against a dense quadrature
+// The split-sum table computed by shaders/environment/brdf_lut.comp (4096 Hammersley samples) against a dense quadrature
 // over half vectors. Tolerance 0.01 absolute on A and B (values in [0, 1]): the Hammersley estimate's error at
 // 4096 samples is at most about 0.006 (at n.v = 0.07, where the 1 / n.v weight makes it largest; 512 samples
 // gave 0.026 there), while a wrong weight, G or Fresnel term is off by far more.
@@ -292,7 +292,7 @@ TEST(Environment, WhiteMetalReflectsTheLobeAlbedo) {
         }
 }
 
-// The prefiltered rungs (shaders/env/prefilter.comp, texel quadrature) against the defining integral evaluated by
+// The prefiltered rungs (shaders/environment/prefilter.comp, texel quadrature) against the defining integral evaluated by
 // quadrature over every texel of the same source cube (read back), on the smooth synthetic map: 4% relative per
 // channel at each sampled texel centre and 1.5% on average (the upsampling of the rungs filtered below their face
 // size). A wrong lobe (NDF, alpha, rung or layer) is off by more.
@@ -568,7 +568,7 @@ TEST(Environment, SharedMapsRenderFinite) {
 //     integral over every texel of the source cube (envref::prefilteredRadianceReference): within 15% at a texel and
 //     3% on average (measured 14.3% worst, at rung 2 (alpha 0.05, Beckmann): the narrow rungs are filtered at 64 or
 //     32 texels a face and upsampled; filtered importance sampling, which the texel quadrature of
-//     shaders/env/prefilter.comp replaced, was off by up to 2x here).
+//     shaders/environment/prefilter.comp replaced, was off by up to 2x here).
 // (2) The lookup: white metal sphere (96 x 96), both NDFs, the pixels facing the eye (n.v >= 0.8), against the
 //     split sum at the material's exact alpha (prefiltered quadrature times the exact (A, B)), at alphas on and
 //     between rungs from 0.05 to 1: within 25% (the bound; measured 16.9% worst, studio_small_03, Beckmann,

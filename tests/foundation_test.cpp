@@ -6,7 +6,7 @@
 
 #include "render/aov.h"
 #include "reference/brdf_reference.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
 

@@ -17,7 +17,7 @@
 
 #include "render/aov.h"
 #include "render/mesh_chunks.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene_loader.h"
 

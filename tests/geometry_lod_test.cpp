@@ -1,5 +1,5 @@
 // Levels of detail of the mesh chunks (render/mesh_chunks.h addChunkLods, GpuScene, lod.pixel_error) and the
-// lighting pass's shading classes (render/passes/lighting_pass.h, lighting.split_glinty):
+// lighting pass's shading classes (render/frame/lighting_pass.h, lighting.split_glinty):
 //   - every coarser level of every atrium chunk has fewer triangles and no smaller error than the one before,
 //     indexes only the chunk's own vertices, keeps every border edge of the chunk (so neighbouring chunks at
 //     different levels meet without cracks), and stays within its stated error of the chunk's surface
@@ -18,7 +18,7 @@
 
 #include "render/aov.h"
 #include "render/mesh_chunks.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene_loader.h"
 

@@ -17,7 +17,7 @@
 
 #include "bench/sparkle_stats.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 using namespace glimmer;
 
@@ -219,7 +219,7 @@ TEST(GlintSameMaterial, EveryMethodRendersTheSameMeanAndSparseCount) {
             std::string what = method + " " + c.scene + " density " + std::to_string(c.density) + " gamma " +
                                std::to_string(c.gamma);
             // wang2020 was 1.19-1.27 x smooth while its DPF tables were Beckmann under these GGX planes; they now
-            // follow the material's NDF (engine/glints/wang2020_dpf.h ParticleNdf), so the 10 % target holds.
+            // follow the material's NDF (engine/glints/wang2020/wang2020_dpf.h ParticleNdf), so the 10 % target holds.
             EXPECT_NEAR(row.meanRatio, 1.0, 0.10) << what;
             // Issue 17's factor-2 count criterion against each method's predicted count (countedPerFacet above);
             // the naive count (every reflecting facet once) is printed beside it.

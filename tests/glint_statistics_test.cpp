@@ -18,7 +18,7 @@
 #include "glints/methods.h"
 #include "reference/kemppinen2025_reference.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/process.h"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "core/files.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
 #include "support/process.h"

@@ -65,7 +65,7 @@ double waitForChange(FileWatcher& watcher, const fs::path& file, std::vector<fs:
     return -1.0;
 }
 
-// CPU reference of shaders/tonemap.frag for the final view: exposure 1, ACES fit (Narkowicz), sRGB, 8 bits.
+// CPU reference of shaders/image/tonemap.frag for the final view: exposure 1, ACES fit (Narkowicz), sRGB, 8 bits.
 uint8_t displayValue(float linear) {
     float x = linear;
     float aces = std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
@@ -110,7 +110,7 @@ TEST(HotReload, EditTakesEffectBrokenEditKeepsLastGoodProgramAndFixRecovers) {
     EXPECT_TRUE(watcher.poll().empty());
 
     // 1. Lighting outputs a constant: wrap the original main and overwrite its result.
-    fs::path lighting = copy.dir() / "lighting.frag";
+    fs::path lighting = copy.dir() / "frame/lighting.frag";
     const std::string original = readTextFile(lighting);
     std::smatch output;
     ASSERT_TRUE(std::regex_search(original, output, std::regex(R"(layout\(location = 0\) out vec4 (\w+);)")));
@@ -183,7 +183,7 @@ TEST(FileWatcher, ModificationTimeFallbackSeesWritesAndRenames) {
         EXPECT_TRUE(watcher.poll().empty()) << "no change, no report";
         std::this_thread::sleep_for(10ms);
     }
-    fs::path file = copy.dir() / "tonemap.frag";
+    fs::path file = copy.dir() / "image/tonemap.frag";
     std::vector<fs::path> changed;
     writeFile(file, readTextFile(file) + "\n", false);
     double latency = waitForChange(watcher, file, changed);
@@ -196,7 +196,7 @@ TEST(FileWatcher, ModificationTimeFallbackSeesWritesAndRenames) {
 TEST(FileWatcher, DebounceMergesBurstsAndWatchesNewFolders) {
     TempShaderCopy copy("watch-debounce");
     FileWatcher watcher(copy.dir(), 80ms);
-    fs::path file = copy.dir() / "fullscreen.vert";
+    fs::path file = copy.dir() / "common/fullscreen.vert";
     std::string text = readTextFile(file);
     auto written = std::chrono::steady_clock::now();
     writeFile(file, text + "\n", false);

@@ -11,7 +11,7 @@
 #include <cstdlib>
 
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/scene_loader.h"
 
 namespace glimmer {

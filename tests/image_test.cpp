@@ -10,10 +10,10 @@
 #include "core/files.h"
 #include "gl/program.h"
 #include "platform/context.h"
-#include "render/passes/bloom_pass.h"
+#include "render/image/bloom_pass.h"
 #include "render/image/halton_jitter.h"
 #include "render/image/tone_curves.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "render/renderer.h"
 #include "render/shader_interface.h"
 #include "scene/scene_loader.h"
@@ -79,8 +79,8 @@ TEST(ImageToneCurves, TonemapPassMatchesCpu) {
     glCreateFramebuffers(1, &fbo);
     gl::Framebuffer framebuffer(fbo);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, output.id(), 0);
-    gl::Program program(defaultShaderDir(), {"tonemap", {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                                         {GL_FRAGMENT_SHADER, "tonemap.frag"}}});
+    gl::Program program(defaultShaderDir(), {"tonemap", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                                         {GL_FRAGMENT_SHADER, "image/tonemap.frag"}}});
     FrameUniforms frame{};
     frame.viewport = {width, height, 0, 0};
     const float exposureEv = 0.5f;

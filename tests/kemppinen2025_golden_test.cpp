@@ -4,7 +4,7 @@
 // rewritten with GLIMMER_UPDATE_GOLDEN=1. The comparison tolerates one-pixel shifts of glints (support/golden.h).
 #include <gtest/gtest.h>
 
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "support/golden.h"
 
 using namespace glimmer;

@@ -25,10 +25,10 @@
 #include "glints/methods.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/environment.h"
+#include "environment/environment.h"
 #include "reference/environment_reference.h"
 #include "render/gpu_scene.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 #include "reference/ibl_sampling_reference.h"
 #include "render/renderer.h"
 #include "render/settings.h"
@@ -126,7 +126,7 @@ TEST(Kemppinen2025Ibl, CpuEstimatorMatchesQuadrature) {
 
 namespace {
 
-// The compute shader shaders/ibl/ibl_estimator_test.glsl with the method and mode of `settings`.
+// The compute shader shaders/environment/ibl/ibl_estimator_test.glsl with the method and mode of `settings`.
 class EstimatorRig {
 public:
     EstimatorRig() : context_(createHeadlessContext(Backend::Egl)), env_(defaultShaderDir()) {
@@ -151,7 +151,7 @@ public:
         ParamValues methodValues{{"micro_roughness", float(c.micro)}, {"density", 2e6f}};
         gl::ProgramDesc desc;
         desc.name = "ibl estimator test/" + iblMode;
-        desc.stages = {{GL_COMPUTE_SHADER, "ibl/ibl_estimator_test.glsl"}};
+        desc.stages = {{GL_COMPUTE_SHADER, "environment/ibl/ibl_estimator_test.glsl"}};
         desc.defines = {method.define, mode.define};
         desc.preamble = methodParamsGlsl(method) + iblParamsGlsl(mode);
         desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;

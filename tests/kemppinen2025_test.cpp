@@ -17,7 +17,7 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/glint_mapping.h"
-#include "glints/method_checks.h"
+#include "checks/method_checks.h"
 #include "reference/kemppinen2025_reference.h"
 #include "glints/methods.h"
 #include "platform/context.h"
@@ -291,7 +291,7 @@ static GapStats gapToSmooth(GlintRig& rig, const RenderSettings& glinty, const s
     return g;
 }
 
-// check-method's finite rule (40,824 footprints x angles x roughnesses, engine/glints/method_checks.cpp) once
+// check-method's finite rule (40,824 footprints x angles x roughnesses, engine/checks/method_checks.cpp) once
 // found 780 NaN and then one Inf: duv/dx about 1e4 UV with nearly parallel derivatives made det(Sigma_s) round
 // to zero or below, and the quadratic form of its nearly singular inverse negative. Every value must be finite.
 TEST(Kemppinen2025, FiniteAtDegenerateHugeFootprints) {
@@ -597,7 +597,7 @@ void runSamplingCase(const SamplingCase& c) {
     ParamValues values{{"micro_roughness", float(c.micro)}, {"density", 2e6f}};
     gl::ProgramDesc desc;
     desc.name = "kemppinen2025 sampling test";
-    desc.stages = {{GL_COMPUTE_SHADER, "glints/kemppinen2025_sampling_test.glsl"}};
+    desc.stages = {{GL_COMPUTE_SHADER, "glints/kemppinen2025/kemppinen2025_sampling_test.glsl"}};
     desc.preamble = methodParamsGlsl(method);
     gl::Program program(defaultShaderDir(), desc);
     std::vector<float> packed = packMethodParams(method, values);

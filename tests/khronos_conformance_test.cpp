@@ -17,7 +17,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"

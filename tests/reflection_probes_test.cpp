@@ -1,4 +1,4 @@
-// Reflection probes (render/reflection_probes.h): a mirror sphere next to a coloured wall reflects the wall on
+// Reflection probes (render/probes/reflection_probes.h): a mirror sphere next to a coloured wall reflects the wall on
 // the side facing it and the sky on the far side; the white furnace holds with probes on; a second frame with
 // nothing changed does not re-capture; the proxy box fit (CPU).
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "core/files.h"
 #include "platform/context.h"
 #include "render/gpu_scene.h"
-#include "render/reflection_probe_placement.h"
+#include "render/probes/reflection_probe_placement.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"

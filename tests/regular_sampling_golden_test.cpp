@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "ibl/ibl_modes.h"
-#include "render/offscreen.h"
+#include "environment/ibl/ibl_modes.h"
+#include "offscreen/offscreen.h"
 #include "render/settings.h"
 #include "support/golden.h"
 

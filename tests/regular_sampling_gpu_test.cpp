@@ -1,5 +1,5 @@
 // Issue 7 through the real GL pipeline (offscreen llvmpipe): the IBL modes regular, fis and reference against the
-// CPU estimators of engine/ibl/ibl_estimators.h under a constant environment (where the lookups are exact, so the
+// CPU estimators of engine/environment/ibl/ibl_estimators.h under a constant environment (where the lookups are exact, so the
 // whole per-pixel chain - frame, pattern buffers, BRDF, pdf, sums - is checked), pattern re-upload on parameter
 // changes, and the error of regular vs fis against the accumulated reference under an environment of small bright
 // spots (the paper's Figures 8-10; the table is written to test-output/regular_sampling/rmse_table.md).
@@ -16,12 +16,12 @@
 
 #include "core/files.h"
 #include "core/image_io.h"
-#include "ibl/ibl_estimators.h"
-#include "ibl/kurt_ibl_resources.h"
+#include "environment/ibl/ibl_estimators.h"
+#include "environment/ibl/kurt_ibl_resources.h"
 #include "render/renderer_capture.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

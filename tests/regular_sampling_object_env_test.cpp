@@ -7,7 +7,7 @@
 
 #include "core/files.h"
 #include "core/image_io.h"
-#include "ibl/object_environment.h"
+#include "environment/ibl/object_environment.h"
 #include "render/renderer_capture.h"
 #include "platform/context.h"
 #include "reference/environment_reference.h"

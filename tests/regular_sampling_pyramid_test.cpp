@@ -12,7 +12,7 @@
 
 #include "core/clock.h"
 #include "core/files.h"
-#include "ibl/cube_pyramid.h"
+#include "environment/ibl/cube_pyramid.h"
 #include "platform/context.h"
 
 namespace glimmer::ibl {

@@ -9,9 +9,9 @@
 #include <random>
 
 #include "core/error.h"
-#include "ibl/ibl_estimators.h"
-#include "ibl/kurt_brdf.h"
-#include "ibl/regular_pattern.h"
+#include "environment/ibl/ibl_estimators.h"
+#include "environment/ibl/kurt_brdf.h"
+#include "environment/ibl/regular_pattern.h"
 
 namespace glimmer::ibl {
 namespace {

@@ -126,7 +126,7 @@ TEST(CommandLine, ShadersAreFoundBesideAnInstalledExecutable) {
     fs::permissions(prefix / "bin" / "glimmer", fs::perms::owner_all, fs::perm_options::add);
     fs::path shaders = prefix / "share" / "glimmer" / "shaders";
     fs::copy(fs::path(GLIMMER_TEST_DIR) / ".." / "shaders", shaders, fs::copy_options::recursive);
-    std::ofstream(shaders / "tonemap.frag", std::ios::app) << "\nnot glsl;\n";
+    std::ofstream(shaders / "image/tonemap.frag", std::ios::app) << "\nnot glsl;\n";
     fs::path err = prefix / "err.txt";
     std::string render = (prefix / "bin" / "glimmer").string() + " render --scene sphere --method smooth --size 16x16 --env none --out " +
                          (prefix / "o.png").string() + " > /dev/null 2> " + err.string();

@@ -19,7 +19,7 @@
 
 #include "core/error.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/atrium.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"

@@ -1,4 +1,4 @@
-// The CPU geometry of the shadow maps (render/shadow_cascades.h, render/shadow_projections.h): split distances,
+// The CPU geometry of the shadow maps (render/shadows/shadow_cascades.h, render/shadows/shadow_projections.h): split distances,
 // cascade spheres that hold their view slice wherever the camera turns, texel snapping, the
 // cache rule, and the projections' ranges. No GL.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "render/shadow_cascades.h"
-#include "render/shadow_projections.h"
+#include "render/shadows/shadow_cascades.h"
+#include "render/shadows/shadow_projections.h"
 
 namespace glimmer {
 namespace {

@@ -1,4 +1,4 @@
-// Shadows through the real GL pipeline (render/shadow_maps.h, shaders/common/shadows.glsl), judged by a CPU ray
+// Shadows through the real GL pipeline (render/shadows/shadow_maps.h, shaders/shadows/shadows.glsl), judged by a CPU ray
 // cast: an occluder box over a ground plane, seen from above at 256x256.
 // - the sun's shadow boundary (--aov shadow < 0.5) lies where the analytic projection of the box puts it, within
 //   2 px, at 45 degrees and at a grazing 12 degrees with the box resting on the plane (no acne on the lit plane,
@@ -26,7 +26,7 @@
 #include "render/aov.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
-#include "render/shadow_maps.h"
+#include "render/shadows/shadow_maps.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
 

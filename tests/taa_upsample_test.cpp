@@ -22,8 +22,8 @@
 #include "core/image_io.h"
 #include "render/aov.h"
 #include "render/image/halton_jitter.h"
-#include "render/offscreen.h"
-#include "render/upscale.h"
+#include "offscreen/offscreen.h"
+#include "render/image/upscale.h"
 #include "scene/scene_loader.h"
 #include "support/process.h"
 

@@ -15,10 +15,10 @@
 
 #include "core/files.h"
 #include "glints/glint_mapping.h"
-#include "glints/method_checks.h"
-#include "glints/user_methods.h"
+#include "checks/method_checks.h"
+#include "glints/user/user_methods.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "render/settings.h"
 #include "support/process.h"
 

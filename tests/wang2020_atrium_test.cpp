@@ -1,5 +1,5 @@
 // wang2020 in the atrium with each glinty material's own roughness and NDF (issue 16): one DPF table per distinct
-// (NDF, roughness) of the glinty materials (engine/glints/wang2020_resources.h). Court view at 256 x 256, DPF
+// (NDF, roughness) of the glinty materials (engine/glints/wang2020/wang2020_resources.h). Court view at 256 x 256, DPF
 // tables at 45x45x90 (table_scale=2, as in every wang2020 test), the materials' glint parameters mapped as for
 // every method (README "The glint material"). For each glinty look: mean radiance over its pixels within 25 % of
 // smooth's, and sparkle: over its sun highlight, p99 / mean of D / D_smooth (glint AOVs) above 1.3 (smooth: 1).
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer {
 namespace {

@@ -1,4 +1,4 @@
-// Wang, Deng & Holzschuch 2020 (shaders/glints/wang2020.glsl, engine/glints/wang2020_*): DPF tables against the
+// Wang, Deng & Holzschuch 2020 (shaders/glints/wang2020/wang2020.glsl, engine/glints/wang2020_*): DPF tables against the
 // definition, the quadtree's multinomial splitting, the three-scale glint pass through the real GL pipeline against
 // the explicit-particle CPU reference, material editing and bad input.
 // Tests use DPF tables at half the paper's resolution (45 x 45 x 90, wang2020.table_scale=2), cached under the
@@ -15,18 +15,18 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
-#include "glints/wang2020_dpf.h"
-#include "glints/wang2020_prefilter.h"
-#include "glints/wang2020_quadtree.h"
+#include "glints/wang2020/wang2020_dpf.h"
+#include "glints/wang2020/wang2020_prefilter.h"
+#include "glints/wang2020/wang2020_quadtree.h"
 #include "reference/wang2020_reference.h"
-#include "glints/wang2020_resources.h"
+#include "glints/wang2020/wang2020_resources.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/environment.h"
+#include "environment/environment.h"
 #include "reference/environment_reference.h"
-#include "glints/wang2020_post_pass.h"
+#include "glints/wang2020/wang2020_post_pass.h"
 #include "reference/wang2020_post_reference.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "support/golden.h"
 #include "support/process.h"
 

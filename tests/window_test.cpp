@@ -111,7 +111,7 @@ TEST(Window, BrokenShaderFailsAFramesRunWithFileAndLine) {
     fs::remove_all(dir);
     fs::copy(fs::path(GLIMMER_SOURCE_DIR) / "shaders", dir, fs::copy_options::recursive);
     {
-        std::ofstream out(dir / "tonemap.frag", std::ios::app);
+        std::ofstream out(dir / "image/tonemap.frag", std::ios::app);
         out << "\nthis is not glsl;\n";
     }
     fs::path errors = outputDir() / "broken-shaders.err";

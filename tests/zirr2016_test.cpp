@@ -1,4 +1,4 @@
-// The Zirr & Kaplanyan 2016 baseline (shaders/glints/zirr2016.glsl) through the real GL pipeline against its CPU
+// The Zirr & Kaplanyan 2016 baseline (shaders/glints/zirr2016/zirr2016.glsl) through the real GL pipeline against its CPU
 // reference (engine/glints/zirr2016_reference.h). Its LOD-lerp variance loss is tested beside Deliot & Belcour's
 // distributed blending in tests/deliot2023_test.cpp (Deliot2023Blending).
 #include <gtest/gtest.h>
@@ -8,11 +8,11 @@
 #include <numeric>
 #include <random>
 
-#include "glints/method_probe.h"
+#include "reference/method_probe.h"
 #include "reference/zirr2016_reference.h"
 #include "platform/context.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
 

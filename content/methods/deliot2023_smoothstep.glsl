@@ -31,7 +31,7 @@ map: microfacet_roughness = (angular_size)^2 alpha^-2
 // (Kneiphof & Klein 2024, 2025) come with it unchanged: they keep Eq. 14's bilinear weights. `resources: deliot2023` borrows the built-in's
 // random-number texture (Sec. 6.3), which its helpers read.
 #define glintD deliot2023GlintD
-#include "glints/deliot2023.glsl"
+#include "glints/deliot2023/deliot2023.glsl"
 #undef glintD
 
 vec4 angularBlendWeights(vec2 f) {

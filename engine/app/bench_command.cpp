@@ -14,7 +14,7 @@
 #include "core/cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 
 namespace glimmer {
 

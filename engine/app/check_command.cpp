@@ -1,4 +1,4 @@
-// glimmer check-method: the interface rules a glint method is held to (glints/method_checks.h), as a table.
+// glimmer check-method: the interface rules a glint method is held to (checks/method_checks.h), as a table.
 // Exit 0 when every rule passes, 1 naming the failed rules.
 #include <cstdio>
 #include <sstream>
@@ -6,8 +6,8 @@
 #include "app/commands.h"
 #include "core/cli.h"
 #include "core/error.h"
-#include "glints/method_checks.h"
-#include "glints/user_methods.h"
+#include "checks/method_checks.h"
+#include "glints/user/user_methods.h"
 #include "platform/context.h"
 
 namespace glimmer {

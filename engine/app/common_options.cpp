@@ -4,10 +4,10 @@
 
 #include "core/error.h"
 #include "glints/methods.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "render/aov.h"
-#include "render/environment.h"
-#include "ibl/ibl_modes.h"
+#include "environment/environment.h"
+#include "environment/ibl/ibl_modes.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_loader.h"

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "core/cli.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer {
 

@@ -13,9 +13,9 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 #include "render/settings.h"
 
 namespace glimmer {

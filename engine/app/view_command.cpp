@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "glints/methods.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "ui/input_script.h"
 
 namespace glimmer {

@@ -19,7 +19,7 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "gl/program.h"
-#include "glints/user_methods.h"
+#include "glints/user/user_methods.h"
 #include "platform/glfw_window.h"
 #include "render/aov.h"
 #include "render/renderer.h"
@@ -140,7 +140,7 @@ public:
         // (lod.pixel_error=1): the G-buffer's vertex work is serial on llvmpipe.
         if (softwareRenderer_ && !options.screenshot && !settings.isSet("lod.pixel_error"))
             settings.apply("lod.pixel_error=1");
-        // Every window shades glinty and other pixels with separate programs (render/passes/lighting_pass.h).
+        // Every window shades glinty and other pixels with separate programs (render/frame/lighting_pass.h).
         if (!options.screenshot && !settings.isSet("lighting.split_glinty")) settings.apply("lighting.split_glinty=1");
         renderer_ = std::make_unique<Renderer>(shaderRoot, settings);
         renderer_->setAsyncGpuTimers(true);
@@ -263,7 +263,7 @@ private:
         refreshMethodFileChoices();
     }
 
-    // User methods (--method-file, glints/user_methods.h) may live anywhere: their folders and the folders of the
+    // User methods (--method-file, glints/user/user_methods.h) may live anywhere: their folders and the folders of the
     // files they include from outside the shader root are watched too (without subfolders).
     void watchMethodFolders() {
         if (!watcher_) return;
@@ -897,7 +897,7 @@ private:
                             std::to_string(int(std::lround(1000.0 / std::max(frameMs_, 1e-3)))) + " fps) " +
                             resolution_->statsText();
         std::string timers = "GPU ms:";
-        for (const PassTiming& t : renderer_->passTimings())   // NaN: no plausible result (render/passes/pass_timer.h)
+        for (const PassTiming& t : renderer_->passTimings())   // NaN: no plausible result (render/frame/pass_timer.h)
             timers += " " + t.name + " " + (std::isnan(t.gpuMs) ? std::string("n/a") : formatMsShort(t.gpuMs));
         if (renderer_->passTimings().empty()) timers += " (pending)";
         if (float(ui::textWidth(frame + " | " + timers, ui_.scale())) <= available) {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer {
 

@@ -1,5 +1,5 @@
 // The window's resolution handling: the scene renders at the dynamic render scale (render/dynamic_resolution.h),
-// the display image is upscaled to the window (render/upscale.h) before the UI is drawn at native resolution, and
+// the display image is upscaled to the window (render/image/upscale.h) before the UI is drawn at native resolution, and
 // frame times are kept for percentiles (strip and `view --stats`). Glint footprints and UV derivatives are those of
 // the internal resolution by construction: the G-buffer and lighting passes run at the internal size.
 #pragma once
@@ -11,7 +11,7 @@
 #include "core/frame_times.h"
 #include "render/dynamic_resolution.h"
 #include "render/renderer.h"
-#include "render/upscale.h"
+#include "render/image/upscale.h"
 
 namespace glimmer {
 

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "glints/methods.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::bench {
 

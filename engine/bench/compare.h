@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::bench {
 

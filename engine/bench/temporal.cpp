@@ -11,7 +11,7 @@
 
 #include "glints/methods.h"
 #include "render/aov.h"
-#include "render/offscreen.h"
+#include "offscreen/offscreen.h"
 
 namespace glimmer::bench {
 

@@ -4,8 +4,7 @@
 #include <cstring>
 
 #include "common/bindings.glsl"
-#include "ibl/ibl_modes.h"
-#include "render/reflection_probes.h"
+#include "environment/ibl/ibl_modes.h"
 
 namespace glimmer {
 namespace {
@@ -107,11 +106,11 @@ void EnvironmentGlints::buildWeights(bool probe, GLuint source, int sourceCube, 
 std::vector<std::pair<std::string, double>> EnvironmentGlints::update(const EnvironmentGlintSettings& settings,
                                                                       GLuint sourceCube, int sourceFaceSize,
                                                                       const std::string& environmentKey,
-                                                                      const ReflectionProbes* probes, bool measure) {
-    const int probeCount = probes ? int(probes->probes().size()) : 0;
+                                                                      const Probes& probes, bool measure) {
+    const int probeCount = probes.array ? probes.count : 0;
     const std::string key = environmentKey + "|levels " + std::to_string(settings.levels) + "|black " +
-                            std::to_string(settings.blackLevel) + "|probes " +
-                            (probes ? std::to_string(probes->captures()) + "x" + std::to_string(probeCount) : "none");
+                            std::to_string(settings.blackLevel) + "|probes " + std::to_string(probes.captures) + "x" +
+                            std::to_string(probeCount);
     if (key == key_ || settings.levels <= 0 || !sourceCube) return {};
     const auto start = std::chrono::steady_clock::now();
     if (!reduceTexels_) {   // built on first use: a renderer whose method draws no environment glints never compiles them
@@ -132,7 +131,7 @@ std::vector<std::pair<std::string, double>> EnvironmentGlints::update(const Envi
         probeCount_ = probeCount;
     }
     for (int i = 0; i < probeCount; ++i)
-        buildWeights(true, probes->specularArray(), 2 * i, 0.0f, probeWeights_.id(), 24 * i, slices);
+        buildWeights(true, probes.array, 2 * i, 0.0f, probeWeights_.id(), 24 * i, slices);
     glNamedBufferSubData(block_.id(), 48 + 8, 4, &probeCount);   // info.z
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     if (measure) glFinish();

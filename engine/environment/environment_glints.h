@@ -4,7 +4,7 @@
 //   dispatches (shaders/environment/glint_levels.comp), split into K = 4 or 8 log-spaced levels (level 0 = 0);
 // - per level, the indicator weights of every texel (its luminance shared linearly between the two levels around
 //   it; shaders/environment/glint_weights.comp), prefiltered by the GGX / Beckmann convolution of the radiance
-//   (render/cube_prefilter.h) into a mip chain whose level k holds sqrt(alpha) = k / 5, for the distant
+//   (environment/cube_prefilter.h) into a mip chain whose level k holds sqrt(alpha) = k / 5, for the distant
 //   environment and, which the paper leaves out, for every reflection probe (premultiplied by its coverage, as the
 //   lighting pass blends probe and sky).
 // Built when the environment, the probes or the settings change, never on a still frame (the paper runs it every
@@ -22,11 +22,10 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "render/cube_prefilter.h"
+#include "environment/cube_prefilter.h"
 
 namespace glimmer {
 
-class ReflectionProbes;
 struct IblMode;
 
 struct EnvironmentGlintSettings {
@@ -48,12 +47,20 @@ public:
     explicit EnvironmentGlints(std::filesystem::path shaderRoot);
     ~EnvironmentGlints();
 
+    // The reflection probes as the weights read them: their cube-map array (layer 2 x probe holds a probe's
+    // unfiltered capture in level 0, premultiplied, coverage in alpha), how many, and a value that changes with
+    // every capture (render/probes/reflection_probes.h).
+    struct Probes {
+        GLuint array = 0;
+        int count = 0;
+        int captures = 0;
+    };
     // Rebuilds the levels and the weights when the environment (`environmentKey`, its source cube with a full mip
-    // chain of `sourceFaceSize` faces), the probes (their capture count; null: none) or the settings changed since
-    // the last build. Returns the passes that ran (name, wall ms), closed by glFinish when `measure`.
+    // chain of `sourceFaceSize` faces), the probes or the settings changed since the last build. Returns the passes
+    // that ran (name, wall ms), closed by glFinish when `measure`.
     std::vector<std::pair<std::string, double>> update(const EnvironmentGlintSettings& settings, GLuint sourceCube,
                                                        int sourceFaceSize, const std::string& environmentKey,
-                                                       const ReflectionProbes* probes, bool measure);
+                                                       const Probes& probes, bool measure);
     // Binds the level block and both weight arrays (common/bindings.glsl BINDING_ENV_GLINTS, units 34 and 35);
     // `active` false binds a block with no levels (the lighting pass then draws no environment glints).
     void bind(bool active) const;

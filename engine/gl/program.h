@@ -15,7 +15,7 @@ namespace glimmer::gl {
 
 struct ShaderStage {
     GLenum type;               // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
-    std::string file;          // relative to the shader root, e.g. "lighting.frag"
+    std::string file;          // relative to the shader root, e.g. "frame/lighting.frag"
 };
 
 struct ProgramDesc {

@@ -5,9 +5,9 @@
 
 #include "core/error.h"
 #include "common/bindings.glsl"
-#include "glints/deliot2023_resources.h"
-#include "glints/wang2020_post_pass.h"
-#include "glints/wang2020_resources.h"
+#include "glints/deliot2023/deliot2023_resources.h"
+#include "glints/wang2020/wang2020_post_pass.h"
+#include "glints/wang2020/wang2020_resources.h"
 
 namespace glimmer {
 
@@ -17,10 +17,10 @@ static GlintMethod smoothMethod() {
             "Cook & Torrance 1982; Walter et al. 2007 (GGX); Beckmann 1963", {}};
 }
 
-// Deliot & Belcour 2023: shaders/glints/deliot2023.glsl; defaults and ranges from methods.md (public ports).
+// Deliot & Belcour 2023: shaders/glints/deliot2023/deliot2023.glsl; defaults and ranges from methods.md (public ports).
 static GlintMethod deliot2023Method() {
     GlintMethod method{"deliot2023", "Deliot & Belcour 2023 (distributed binomial laws, anisotropic grids)",
-            "GLINT_METHOD_DELIOT2023", "glints/deliot2023.glsl",
+            "GLINT_METHOD_DELIOT2023", "glints/deliot2023/deliot2023.glsl",
             "Deliot & Belcour 2023, Real-time rendering of glinty appearances using distributed binomial laws on "
             "anisotropic grids, Computer Graphics Forum 42(8)",
             {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
@@ -71,10 +71,10 @@ static GlintMethod deliot2023Method() {
     return method;
 }
 
-// Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016.glsl.
+// Zirr & Kaplanyan 2016, the baseline both glint papers compare with: shaders/glints/zirr2016/zirr2016.glsl.
 static GlintMethod zirr2016Method() {
     GlintMethod method{"zirr2016", "Zirr & Kaplanyan 2016 (baseline: mip grids, lerped binomials)", "GLINT_METHOD_ZIRR2016",
-            "glints/zirr2016.glsl",
+            "glints/zirr2016/zirr2016.glsl",
             "Zirr & Kaplanyan 2016, Real-time rendering of procedural multiscale materials, I3D 2016",
             // The authors' shader's parameters with their defaults, except `variation` (raises the mean; left out).
             {{"log_density", 16.0f, 0.0f, 50.0f, "natural log of the microfacet density per unit UV area"},
@@ -98,7 +98,7 @@ static GlintMethod kemppinen2025Method() {
     GlintMethod method{"kemppinen2025",
             "Kemppinen et al. 2025 (constant-time glinty NDF)",
             "GLINT_METHOD_KEMPPINEN2025",
-            "glints/kemppinen2025.glsl",
+            "glints/kemppinen2025/kemppinen2025.glsl",
             "Kemppinen, Paulin, Thonat, Thiery, Lehtinen, Boubekeur 2025, Evaluating and Sampling Glinty NDFs in "
             "Constant Time, ACM TOG 44(6)",
             {
@@ -140,11 +140,11 @@ static GlintMethod kemppinen2025Method() {
     return method;
 }
 
-// Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020.glsl).
+// Wang, Deng & Holzschuch 2020: prefiltered discrete stochastic microfacets (shaders/glints/wang2020/wang2020.glsl).
 // Particle count N is per unit UV square (UVs of the built-in scenes are metres); the square tiles the plane.
 static GlintMethod wang2020Method() {
     GlintMethod method{"wang2020", "Wang, Deng & Holzschuch 2020 (prefiltered discrete stochastic microfacets)",
-            "GLINT_METHOD_WANG2020", "glints/wang2020.glsl",
+            "GLINT_METHOD_WANG2020", "glints/wang2020/wang2020.glsl",
             "Wang, Deng & Holzschuch 2020, Real-time glints rendering with prefiltered discrete stochastic "
             "microfacets, Computer Graphics Forum 39(6)",
             {{"particles", 1e5f, 1.0f, 1e9f, "N, particles per unit UV square (Eq. 4); edits rebuild the quadtree", {},
@@ -176,7 +176,7 @@ static GlintMethod wang2020Method() {
     method.defaultIbl = "wang2020";   // Sec. 4: its own environment glints (the IBL mode of the same name)
     method.createPasses = glintpost::createPasses;
     // N, gamma and roughness shape the quadtree and the DPF tables, built once for the densest glinty material;
-    // the others thin its particles (shaders/glints/wang2020.glsl) and share its gamma and tabulated roughness.
+    // the others thin its particles (shaders/glints/wang2020/wang2020.glsl) and share its gamma and tabulated roughness.
     method.sharedDataMaterial = "particles";
     method.materialMapping = {
         {"particles", GlintQuantity::Density, 1.0f, 1.0f, 0.0f, false, "Eq. 4: N particles per unit UV square"},

@@ -2,7 +2,7 @@
 // it in the lighting program, its parameters (defaults, ranges, meanings) and the paper it implements.
 // Adding a built-in method: write shaders/glints/<name>.glsl with the interface documented in
 // shaders/glints/README.md, add a function returning its GlintMethod below and list it in glintMethods().
-// User methods (--method-file, glints/user_methods.h) are entries of the same table read from one GLSL file's
+// User methods (--method-file, glints/user/user_methods.h) are entries of the same table read from one GLSL file's
 // header block at run time: everything that lists or finds methods sees them like the built-ins.
 #pragma once
 #include <filesystem>
@@ -66,7 +66,7 @@ struct GlintMethod {
     std::string id;           // command-line name, e.g. "deliot2023"
     std::string title;        // display name
     std::string define;       // e.g. "GLINT_METHOD_DELIOT2023"
-    std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023.glsl"
+    std::string shaderFile;   // relative to shaders/, e.g. "glints/deliot2023/deliot2023.glsl"
     std::string citation;     // paper reference
     std::vector<ParamSpec> params;  // read in GLSL as P_<NAME> (upper case)
     // Optional: creates the method's GPU resources (called with a current context).
@@ -92,7 +92,7 @@ struct GlintMethod {
     // densest material's tree), or the first glinty material when empty. Shaders read those values as PS_<NAME>.
     std::string sharedDataMaterial;
     // Parameter values at which the method must render like `smooth` ("very high density"): the convergence
-    // rule of check-method (glints/method_checks.h). Empty: the method declares none.
+    // rule of check-method (checks/method_checks.h). Empty: the method declares none.
     ParamValues convergence;
     // User methods only: the GLSL file the entry was read from (canonical; shaderFile is the same path) and the
     // built-in whose GPU resources it borrows ("" = none). Built-ins leave both empty.

@@ -1,4 +1,4 @@
-// CPU reference of the lighting pass's BRDF (shaders/common/brdf.glsl, shaders/lighting.frag), in double
+// CPU reference of the lighting pass's BRDF (shaders/common/brdf.glsl, shaders/frame/lighting.frag), in double
 // precision, for tests that compare renders with straightforward evaluations of the same formulas.
 #pragma once
 #include <glm/glm.hpp>

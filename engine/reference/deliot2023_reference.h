@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "glints/deliot2023_noise.h"
+#include "glints/deliot2023/deliot2023_noise.h"
 
 namespace glimmer::deliot2023 {
 

@@ -1,8 +1,8 @@
-// CPU references for the environment-lighting passes (shaders/env/*.comp, shaders/common/ibl.glsl): the same
+// CPU references for the environment-lighting passes (shaders/env/*.comp, shaders/environment/prefiltered_lookup.glsl): the same
 // direction conventions and microfacet terms, evaluated by brute force (quadrature over every cube texel or
 // thousands of samples) so tests can check the GPU precomputation and the split-sum result against them.
 // Straightforward and slow on purpose; nothing here runs in the renderer (the shared cube conventions are in
-// render/cube_texels.h).
+// environment/cube_texels.h).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "core/image_io.h"
-#include "render/cube_texels.h"
+#include "environment/cube_texels.h"
 
 namespace glimmer::envref {
 
 constexpr int kNdfGgx = 0, kNdfBeckmann = 1;   // mirror NDF_GGX / NDF_BECKMANN (shaders/common/constants.glsl)
 
-// Equirectangular mapping (same as shaders/env/equirect_to_cube.comp): u = 0.5 at -z, growing towards +x;
+// Equirectangular mapping (same as shaders/environment/equirect_to_cube.comp): u = 0.5 at -z, growing towards +x;
 // v = 0 at the zenith (+y), image rows top-down.
 glm::vec2 directionToEquirect(glm::vec3 direction);
 glm::vec3 equirectToDirection(glm::vec2 uv);

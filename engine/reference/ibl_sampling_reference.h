@@ -1,4 +1,4 @@
-// CPU reference of the Monte Carlo IBL modes `ndf-is` and `glint-is` (shaders/ibl/microfacet_sampling.glsl,
+// CPU reference of the Monte Carlo IBL modes `ndf-is` and `glint-is` (shaders/environment/ibl/microfacet_sampling.glsl,
 // ndf_is.glsl, glint_is.glsl): the same random streams (identical 32-bit integer steps), the same samplers and the
 // same one-sample estimator of the reflected environment radiance, in double precision, with the environment and
 // the NDF given as functions. Tests run it sample by sample against the shader and average it against quadrature.

@@ -1,5 +1,5 @@
 // CPU reference of Kemppinen et al. 2025 ("Evaluating and Sampling Glinty NDFs in Constant Time"): the same
-// formulas as shaders/glints/kemppinen2025_core.glsl, kemppinen2025.glsl and kemppinen2025_sampling.glsl,
+// formulas as shaders/glints/kemppinen2025/kemppinen2025_core.glsl, kemppinen2025.glsl and kemppinen2025_sampling.glsl,
 // written plainly in double precision (the hash is the same 32-bit integer function, so the same points come
 // out). Used by the tests to check the shaders and to measure energy and sampling statistics.
 #pragma once

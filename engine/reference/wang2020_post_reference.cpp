@@ -1,6 +1,6 @@
 #include "reference/wang2020_post_reference.h"
 
-#include "glints/wang2020_post_pass.h"
+#include "glints/wang2020/wang2020_post_pass.h"
 
 namespace glimmer::glintpost {
 

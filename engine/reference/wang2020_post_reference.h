@@ -1,4 +1,4 @@
-// CPU reference of the Wang et al. 2020 Sec. 4.4 post pass (glints/wang2020_post_pass.h), used by the tests to check
+// CPU reference of the Wang et al. 2020 Sec. 4.4 post pass (glints/wang2020/wang2020_post_pass.h), used by the tests to check
 // the GL passes pixel by pixel.
 #pragma once
 #include <vector>

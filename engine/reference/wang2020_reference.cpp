@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "glints/wang2020_dpf.h"
+#include "glints/wang2020/wang2020_dpf.h"
 
 namespace glimmer::wang2020 {
 

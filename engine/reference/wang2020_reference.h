@@ -2,12 +2,12 @@
 // Eq. 3-4) for one light: explicit particles (the positions the quadtree encodes, wang2020_quadtree.h) with
 // explicit Beckmann normals, counting those inside the pixel footprint whose reflection of the light direction
 // falls in the cone of half-angle gamma around the view direction. No DPF, no scales: the ground truth the
-// shader (shaders/glints/wang2020.glsl) is compared with.
+// shader (shaders/glints/wang2020/wang2020.glsl) is compared with.
 #pragma once
 #include <glm/glm.hpp>
 
-#include "glints/wang2020_dpf.h"
-#include "glints/wang2020_quadtree.h"
+#include "glints/wang2020/wang2020_dpf.h"
+#include "glints/wang2020/wang2020_quadtree.h"
 
 namespace glimmer::wang2020 {
 
@@ -30,7 +30,7 @@ glm::vec3 explicitParticleEnvironment(const Quadtree& tree, const Footprint& fp,
                                       Radiance radiance);
 float smithG1Beckmann(glm::vec3 w, float alpha);
 
-// CPU version of the prefilter pass (shaders/glints/wang2020_prefilter.comp) for an environment of constant radiance
+// CPU version of the prefilter pass (shaders/glints/wang2020/wang2020_prefilter.comp) for an environment of constant radiance
 // 1: (L^o, P^) of Eq. 16 (the same K = 64 points, cone form or the paper's DPF-weighted form) and Eq. 17 for a view
 // direction wo in the normal's frame (with constant radiance the table does not depend on the normal). gamma in
 // radians (the cone form's cone; the dpf table is already accumulated for it).

@@ -1,4 +1,4 @@
-// CPU reference of the Zirr & Kaplanyan 2016 baseline as its authors' shader runs it (shaders/glints/zirr2016.glsl):
+// CPU reference of the Zirr & Kaplanyan 2016 baseline as its authors' shader runs it (shaders/glints/zirr2016/zirr2016.glsl):
 // the axis-aligned +-0.5 px box footprint, the LOD and step choice (16-step cap), the inverse-CDF binomial of one
 // uniform and the whole glintD, in float like the shader, so tests can compare the shader with it value by value.
 #pragma once

@@ -1,5 +1,5 @@
 // Render scale for the window: the scene renders at scale x the window (0.25 .. 1) and is upscaled for display
-// (render/upscale.h). With a target frame rate the scale adapts to the measured frame times:
+// (render/image/upscale.h). With a target frame rate the scale adapts to the measured frame times:
 //   - it acts on the median of the frames since its last change (one slow frame does not move it), and only after
 //     kSettleFrames frames at the current scale, so the frames it judges were rendered at that scale;
 //   - dead band: it lowers the scale when the median exceeds the target frame time, raises it only when the median

@@ -9,24 +9,24 @@
 #include "glints/methods.h"
 #include "common/bindings.glsl"
 #include "render/ao/ambient_occlusion.h"
-#include "render/passes/ao_resolve_pass.h"
-#include "render/passes/gbuffer_pass.h"
-#include "render/passes/gtao_pass.h"
-#include "render/passes/lighting_pass.h"
-#include "render/passes/method_pass_host.h"
-#include "render/passes/bloom_pass.h"
-#include "render/passes/exposure_pass.h"
-#include "render/passes/taa_pass.h"
-#include "render/passes/shadow_map_pass.h"
-#include "render/passes/shadow_mask_pass.h"
-#include "render/passes/tonemap_pass.h"
+#include "render/ao/ao_resolve_pass.h"
+#include "render/frame/gbuffer_pass.h"
+#include "render/ao/gtao_pass.h"
+#include "render/frame/lighting_pass.h"
+#include "render/frame/method_pass_host.h"
+#include "render/image/bloom_pass.h"
+#include "render/image/exposure_pass.h"
+#include "render/image/taa_pass.h"
+#include "render/shadows/shadow_map_pass.h"
+#include "render/shadows/shadow_mask_pass.h"
+#include "render/image/tonemap_pass.h"
 #include "render/image/halton_jitter.h"
-#include "render/passes/emissive_pass.h"
-#include "render/passes/forward_target.h"
-#include "render/passes/transparent_pass.h"
+#include "render/forward/emissive_pass.h"
+#include "render/forward/forward_target.h"
+#include "render/forward/transparent_pass.h"
 #include "render/renderer_capture.h"
 #include "render/shader_interface.h"
-#include "render/shadow_maps.h"
+#include "render/shadows/shadow_maps.h"
 
 namespace glimmer {
 
@@ -288,9 +288,13 @@ void Renderer::render(const Scene& scene, const GpuScene& gpuScene, const Camera
     const bool environmentGlints = findGlintMethod(settings_.method).environmentGlints && glintSettings.levels > 0 &&
                                    environment_.enabled();
     if (environmentGlints)
-        for (const auto& [name, ms] : environmentGlints_.update(glintSettings, environment_.sourceCube(),
-                                                                Environment::kFaceSize, environment_.key(),
-                                                                probesActive ? probes_.get() : nullptr, measurePasses))
+        for (const auto& [name, ms] :
+             environmentGlints_.update(glintSettings, environment_.sourceCube(), Environment::kFaceSize, environment_.key(),
+                                       probesActive ? EnvironmentGlints::Probes{probes_->specularArray(),
+                                                                                int(probes_->probes().size()),
+                                                                                probes_->captures()}
+                                                    : EnvironmentGlints::Probes{},
+                                       measurePasses))
             recordOnDemand(name, ms, measurePasses);
     environmentGlints_.bind(environmentGlints);
 

@@ -13,15 +13,15 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "glints/methods.h"
-#include "ibl/ibl_modes.h"
-#include "render/environment.h"
-#include "render/gbuffer.h"
+#include "environment/ibl/ibl_modes.h"
+#include "environment/environment.h"
+#include "render/frame/gbuffer.h"
 #include "render/gpu_scene.h"
+#include "render/frame/pass.h"
+#include "render/frame/pass_timer.h"
 #include "render/lights/ltc_texture.h"
+#include "render/probes/reflection_probes.h"
 #include "environment/environment_glints.h"
-#include "render/passes/pass.h"
-#include "render/passes/pass_timer.h"
-#include "render/reflection_probes.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
@@ -83,7 +83,7 @@ public:
                 bool measurePasses = false);
     // The size the frame is displayed at (0 x 0: the render size). With aa=taa and a render size below it, the TAA
     // pass resolves to this size (TAA upsampling) and the post passes and the display image have it; otherwise
-    // they have the render size and the caller upscales (render/upscale.h). targets().postWidth() tells which.
+    // they have the render size and the caller upscales (render/image/upscale.h). targets().postWidth() tells which.
     void setOutputSize(int width, int height) { outputWidth_ = width, outputHeight_ = height; }
     // Whether the last frame was upsampled by TAA.
     bool upsampled() const { return targets_.postWidth() != targets_.width() || targets_.postHeight() != targets_.height(); }
@@ -96,7 +96,7 @@ public:
     // calls it too. `flag` names the spec's origin in error messages.
     void prepareEnvironment(const Scene& scene, const std::string& flag = "scene environment");
     const Environment& environment() const { return environment_; }
-    // Reflection probes (captured on the frames where what they see changed; render/reflection_probes.h).
+    // Reflection probes (captured on the frames where what they see changed; render/probes/reflection_probes.h).
     const ReflectionProbes& probes() const { return *probes_; }
     const AmbientOcclusion& ambientOcclusion() const { return *ambientOcclusion_; }
 
@@ -150,7 +150,7 @@ private:
     std::unique_ptr<BloomPass> bloomPass_;
     std::unique_ptr<TonemapPass> tonemapPass_;
     glm::vec2 lastJitter_{0.0f};
-    // After lighting: emission and alpha-blended surfaces (render/passes/forward_target.h), sharing one target.
+    // After lighting: emission and alpha-blended surfaces (render/forward/forward_target.h), sharing one target.
     std::shared_ptr<ForwardTarget> forwardTarget_;
     std::unique_ptr<Pass> forwardRestorePass_, forwardSavePass_, emissivePass_, transparentPass_;
     std::unique_ptr<GlintMethodResources> methodResources_;

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "ibl/scene_capture.h"
+#include "environment/ibl/scene_capture.h"
 
 namespace glimmer {
 

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "glints/methods.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 
 namespace glimmer {
 
@@ -84,7 +84,7 @@ const std::vector<CommonParam>& commonParams() {
           "1: exposure from the luminance histogram (exposure=auto); `exposure` then adds stops", {}, true}},
         {{"tonemap", 0.0f, 0.0f, 2.0f, "tone curve: aces (Narkowicz fit), neutral (Khronos PBR Neutral), agx",
           {"aces", "neutral", "agx"}}},
-        // Reflection probes (render/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
+        // Reflection probes (render/probes/reflection_probes.h, docs/reflection_probes.md), read by the IBL modes that
         // say so (IblMode::readsProbes): prefiltered, ndf-is, glint-is, wang2020.
         {{"probes.enabled", 1.0f, 0.0f, 1.0f,
           "1: metallic objects reflect the scene around them (reflection probes, captured when the scene changes)",
@@ -107,7 +107,7 @@ const std::vector<CommonParam>& commonParams() {
         {{"ao.multibounce", 1.0f, 0.0f, 1.0f, "GTAO multi-bounce fit with the surface albedo (0 or 1)", {}, true}},
         {{"ao.sky_cell", 0.5f, 0.1f, 4.0f, "probe spacing of the sky-visibility bake in metres (grown for large scenes)"}},
         {{"ao.sky_rays", 64.0f, 8.0f, 1024.0f, "rays per probe of the sky-visibility bake (upper hemisphere)", {}, true}},
-        // Shadows (render/shadow_maps.h, docs/shadows.md).
+        // Shadows (render/shadows/shadow_maps.h, docs/shadows.md).
         {{"shadow.enabled", 1.0f, 0.0f, 1.0f, "shadow maps for the sun (cascades) and point lights (cube faces), 0 or 1",
           {}, true}},
         {{"shadow.map_size", 2048.0f, 256.0f, 4096.0f, "texels per side of each sun cascade", {}, true}},

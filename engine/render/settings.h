@@ -23,7 +23,7 @@ struct RenderSettings {
     ParamValues common;                         // keys of commonParams()
     std::map<std::string, ParamValues> methods; // method id -> its parameter values
     int debugView = 0;                          // AovInfo::viewId
-    std::string ibl = "prefiltered";            // environment-integration mode (ibl/ibl_modes.h)
+    std::string ibl = "prefiltered";            // environment-integration mode (environment/ibl/ibl_modes.h)
     std::map<std::string, ParamValues> iblValues;  // mode id -> its parameter values (--set ibl.<name>=V)
 
     float common_(const std::string& name) const;  // value or default of a common parameter

@@ -1,6 +1,6 @@
 // KHR_lights_punctual's recommended falloffs (the extension's README, "Range Property" and "Spot"), on the CPU
-// for tests and documentation; shaders/lighting.frag evaluates the same formulas per pixel. Also the lights' sizes
-// and the GPU order of punctual and area lights.
+// for tests and documentation; shaders/frame/lighting.frag evaluates the same formulas per pixel. Also the lights'
+// sizes and the GPU order of punctual and area lights.
 #include <algorithm>
 #include <cmath>
 

@@ -40,7 +40,7 @@ struct TextureData {
 };
 
 // glTF alphaMode (3.9.4): OPAQUE ignores alpha, MASK cuts at alphaCutoff, BLEND is composited back to front in
-// the forward pass after lighting (render/passes/transparent_pass.h).
+// the forward pass after lighting (render/forward/transparent_pass.h).
 enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
 enum class NdfType : int { Ggx = 0, Beckmann = 1 };

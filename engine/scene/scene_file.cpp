@@ -428,7 +428,7 @@ uint32_t findByName(const Reader& r, const std::vector<std::string>& names, cons
     r.fail(where + "." + key, "no " + std::string(key) + " named '" + name + "' (have: " + known + ")");
 }
 
-// User glint methods the scene comes with (glints/user_methods.h), relative to the scene file; loaded by the
+// User glint methods the scene comes with (glints/user/user_methods.h), relative to the scene file; loaded by the
 // command line (readSceneMethodFiles) before the scene itself, so --method and --set can name them.
 std::vector<std::string> methodFilesOf(const Reader& r, const Json& doc, const std::filesystem::path& path) {
     std::vector<std::string> files;

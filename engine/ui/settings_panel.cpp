@@ -6,7 +6,7 @@
 
 #include "core/files.h"
 #include "render/aov.h"
-#include "ibl/ibl_modes.h"
+#include "environment/ibl/ibl_modes.h"
 #include "ui/font.h"
 
 namespace glimmer::ui {
@@ -186,7 +186,7 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
     }
 
-    // Environment integration: the IBL mode selector and the mode's own parameters (ibl/ibl_modes.h).
+    // Environment integration: the IBL mode selector and the mode's own parameters (environment/ibl/ibl_modes.h).
     if (ui.section("Environment integration (I)")) {
         std::vector<std::string> modes;
         int modeIndex = 0;

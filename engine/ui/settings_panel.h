@@ -25,7 +25,7 @@ struct WindowControls {
     bool recording = false;                 // a camera path is being recorded (R)
     bool hasRecordedPath = false;           // P plays the recorded (or loaded) path instead of the cameras
     // User glint method files the panel offers to load (content/methods/ and the folders of loaded ones), as
-    // shown; glints/user_methods.h.
+    // shown; glints/user/user_methods.h.
     std::vector<std::string> methodFileChoices;
 };
 

@@ -9,10 +9,10 @@
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's shared parameters (PS_<NAME>; P_<NAME> outside lighting)
 #define BINDING_MATERIAL_METHOD_PARAMS 3  // storage (not the uniform 3 above): the method's parameters per material (P_<NAME> in lighting)
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
-#define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadow_maps.cpp); storage 4 is the histogram
+#define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadows/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
-#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/reflection_probes.h)
+#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/probes/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
 #define BINDING_ENV_GLINTS 7         // storage (not the uniform 7 above): environment glint levels (environment/glint_levels.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
@@ -36,10 +36,10 @@
 #define UNIT_IBL_FIRST 16            // IBL modes: 16..23
 #define UNIT_IBL_LAST 23
 #define UNIT_ENV_SOURCE 24           // samplerCube: unfiltered environment with its box mip chain
-#define UNIT_ENV_SPECULAR_FINE 25    // samplerCubeArray: the prefiltered environment's sublevels (render/environment.h)
+#define UNIT_ENV_SPECULAR_FINE 25    // samplerCubeArray: the prefiltered environment's sublevels (environment/environment.h)
 #define UNIT_PROBE_SPECULAR 26       // samplerCubeArray: reflection probes, layer = 2 * probe + NDF; level 0 unfiltered
 #define UNIT_AMBIENT_OCCLUSION 27    // sampler2D: rgb factor on the environment / ambient term, a visibility (ao/)
-#define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadow_maps.h)
+#define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadows/shadow_maps.h)
 #define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces and spot-light views
 #define UNIT_SHADOW_MASK 31          // sampler2DArray: shadowed lights' visibility, 4 a layer (passes/shadow_mask_pass.h)
 // Units 32 and up (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS is 192 on llvmpipe; a stage still reads at most 32 samplers).

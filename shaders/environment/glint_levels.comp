@@ -34,7 +34,7 @@ void reduceShared(uint i) {
 
 #ifdef REDUCE_TEXELS
 layout(binding = UNIT_GLINT_LEVEL_SOURCE) uniform samplerCube u_source;
-#include "env/env_common.glsl"
+#include "environment/env_common.glsl"
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     uint i = gl_LocalInvocationIndex;

@@ -6,7 +6,7 @@
 // PROBE_SOURCE: the source is a reflection probe's cube (premultiplied radiance, coverage in alpha): the weights are
 // premultiplied by the coverage, as the lighting pass blends them.
 #include "common/bindings.glsl"
-#include "env/env_common.glsl"
+#include "environment/env_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 

@@ -3,7 +3,7 @@
 #include "common/bindings.glsl"
 #include "core/cache_file.h"
 #include "core/error.h"
-#include "render/passes/pass_timer.h"
+#include "render/frame/pass_timer.h"
 
 namespace glimmer {
 

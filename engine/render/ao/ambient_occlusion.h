@@ -1,5 +1,5 @@
 // Ambient occlusion of the environment / ambient term (docs/ambient_occlusion.md): the targets and baked data
-// that the two AO passes (render/passes/gtao_pass.h, ao_resolve_pass.h) share, and what the lighting pass reads.
+// that the two AO passes (render/ao/gtao_pass.h, ao_resolve_pass.h) share, and what the lighting pass reads.
 // - Small scale: GTAO (shaders/ao/gtao.frag) into a raw visibility target at the internal resolution, or at every
 //   second pixel in x and y with ao.half_res (common/plane_aware_upsample.glsl).
 // - Large scale: the sky visibility baked once per static scene (ao/sky_visibility.h), uploaded as a 3D texture.

@@ -17,7 +17,7 @@ param: gate = soft in {soft, hard}: binomial gate (see deliot2023)
 // converges to smooth at log_density=40, but at glinty densities each glint is cut down and the area-averaged
 // energy falls far below one: the white-furnace rule must fail, and only that one.
 #define glintD deliot2023GlintD
-#include "glints/deliot2023.glsl"
+#include "glints/deliot2023/deliot2023.glsl"
 #undef glintD
 
 float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {

@@ -1,0 +1,114 @@
+// Reflection probes: cube maps rendered from the scene at chosen points (render/probes/reflection_probe_placement.h),
+// prefiltered like the distant environment (the same CubePrefilter, levels and NDF layers), read by the lighting
+// pass through common/ibl.glsl with the reflected ray parallax-corrected to each probe's proxy box (Lagarde &
+// Zanuttini 2012) and blended with the distant environment by the probe's coverage: a probe stores premultiplied
+// radiance with alpha 1 where it saw geometry and 0 where it saw sky, so
+//     L = probe.rgb + (1 - probe.a) * L_environment
+// at every prefiltered level (the prefilter filters all four channels alike).
+//
+// Captured only when something a probe sees changed (instances, materials, lights, environment, the common
+// parameters, probes.*); a frame with nothing changed reads the cached maps. A capture renders each probe's six
+// faces with the frame's own G-buffer and a default lighting pass (the default method and IBL mode, probes off:
+// no probe sees another probe), culled per face by GpuScene's chunks, then reads back colour and depth to zero the
+// sky, fit the proxy box and upload the cube.
+#pragma once
+#include "common/bindings.glsl"
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/handles.h"
+#include "environment/cube_prefilter.h"
+#include "render/frame/gbuffer.h"
+#include "render/probes/reflection_probe_placement.h"
+#include "render/settings.h"
+
+namespace glimmer {
+
+class Environment;
+class GpuScene;
+class GBufferPass;
+class LightingPass;
+
+// std140 mirror of ProbeBlock in shaders/environment/prefiltered_lookup.glsl.
+struct GpuProbe {
+    glm::vec4 position;       // xyz capture point, w fade distance
+    glm::vec4 influenceMin;   // xyz (w unused)
+    glm::vec4 influenceMax;
+    glm::vec4 proxyMin;
+    glm::vec4 proxyMax;
+};
+constexpr int kMaxReflectionProbes = 8;
+struct ProbeUniforms {
+    glm::vec4 params;         // x probe count, y last prefiltered level
+    GpuProbe probes[kMaxReflectionProbes];
+};
+static_assert(sizeof(ProbeUniforms) == 16 + kMaxReflectionProbes * 80);
+
+constexpr unsigned kProbeBinding = BINDING_PROBES;
+constexpr unsigned kProbeSpecularUnit = UNIT_PROBE_SPECULAR;
+
+// The probes' parameters (common parameters, `--set probes.enabled=0`).
+struct ProbeSettings {
+    bool enabled = true;
+    int faceSize = 128;
+    int maxProbes = kMaxReflectionProbes;
+};
+ProbeSettings probeSettings(const RenderSettings& settings);
+
+class ReflectionProbes {
+public:
+    static constexpr int kLevels = 6;   // as the environment: level k holds sqrt(alpha) = k / 5
+
+    explicit ReflectionProbes(std::filesystem::path shaderRoot);
+    ~ReflectionProbes();
+
+    struct Update {
+        bool ran = false;
+        double captureMs = 0.0, prefilterMs = 0.0;   // wall clock around glFinish
+    };
+    // Re-captures and prefilters the probes when anything they see changed since the last capture. The
+    // environment must be prepared for `scene`. Leaves the frame uniform blocks bound to its own buffers.
+    Update update(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
+                  const RenderSettings& settings);
+    // Binds the probe block and the probe array; `active` false binds a block with no probes (the lighting
+    // reads the distant environment alone).
+    void bind(bool active) const;
+
+    struct Probe {
+        ProbePlacement placement;
+        Box proxy;
+        float coverage = 0.0f;   // fraction of its texels that saw geometry
+    };
+    const std::vector<Probe>& probes() const { return probes_; }   // the captured ones (coverage > 0)
+    int captures() const { return captures_; }                       // how many times update() captured
+    GLuint specularArray() const { return specular_.id(); }
+    int faceSize() const { return faceSize_; }
+    nlohmann::json stats() const;
+
+private:
+    void capture(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
+                 const RenderSettings& settings, const ProbeSettings& probeSettings, Update& timings);
+
+    std::filesystem::path shaderRoot_;
+    std::unique_ptr<GBufferPass> gbuffer_;
+    std::unique_ptr<LightingPass> lighting_;
+    std::unique_ptr<CubePrefilter> prefilter_;
+    FrameTargets targets_;
+    gl::Buffer frameUniforms_, methodParams_, iblParams_, probeBlock_, emptyBlock_;
+    gl::VertexArray emptyVao_;
+    gl::Texture specular_, source_;
+    int faceSize_ = 0;
+    std::vector<Probe> probes_;
+    std::vector<float> key_;
+    std::string keyText_;
+    bool captured_ = false;
+    int captures_ = 0;
+    Update last_;
+};
+
+}  // namespace glimmer

@@ -1,0 +1,44 @@
+#include "render/shadows/shadow_map_pass.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/pipeline_state.h"
+
+namespace glimmer {
+
+ShadowMapPass::ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array)
+    : program_(shaderRoot, {"shadow_depth", {{GL_VERTEX_SHADER, "shadows/shadow_depth.vert"},
+                                             {GL_FRAGMENT_SHADER, "shadows/shadow_depth.frag"}}}),
+      array_(array) {}
+
+bool ShadowMapPass::runs(const FrameContext& frame) const {
+    if (!frame.shadows || frame.blendSample) return false;
+    for (const ShadowView& view : frame.shadows->views())
+        if (view.array == array_) return true;
+    return false;
+}
+
+void ShadowMapPass::execute(const FrameContext& frame) {
+    ShadowMaps& shadows = *frame.shadows;
+    for (ShadowView& view : shadows.views()) {
+        if (view.array != array_ || !view.dirty) continue;
+        const int size = shadows.mapSizeOf(view);
+        gl::PipelineState state = gl::fullscreenState(shadows.framebufferFor(view), size, size);
+        state.depthTest = true;
+        state.depthFunc = GL_GREATER;
+        state.depthWrite = true;
+        // Reversed Z: away from the light is towards 0, so both terms are negative.
+        state.polygonOffset = {-shadows.settings().slopeBias, -1.0f};
+        state.apply();
+        const float clearDepth = 0.0f;
+        glClearNamedFramebufferfv(state.framebuffer, GL_DEPTH, 0, &clearDepth);
+        program_.use();
+        glUniformMatrix4fv(5, 1, GL_FALSE, glm::value_ptr(view.viewProjection));
+        frame.gpuScene.drawInstances(frame.scene, view.viewProjection, DrawSelection::OpaqueDepthOnly);
+        view.dirty = false;
+        (array_ == ShadowArray::Sun ? shadows.stats().sunViewsRendered : shadows.stats().localViewsRendered) += 1;
+        shadows.stats().trianglesDrawn += frame.gpuScene.lastDrawStats().trianglesDrawn;
+    }
+}
+
+}  // namespace glimmer

@@ -1,0 +1,30 @@
+// Shadow-map pass: renders the depth of the views ShadowMaps::prepare marked dirty (render/shadows/shadow_maps.h), one
+// layer each, culling the scene's chunks against the view's own frustum. Two instances run before the G-buffer:
+// `shadow_sun` (the cascades of directional lights) and `shadow_point` (the cube faces of point lights and the
+// views of spot lights). On a frame where nothing moved no view is dirty and the pass draws nothing.
+// State: depth test GREATER and writes (reversed Z, cleared to 0), no colour target, no blending, back faces of
+// single-sided materials culled (GpuScene), slope-scaled polygon offset away from the light (shadow.slope_bias).
+#pragma once
+#include <filesystem>
+
+#include "render/frame/pass.h"
+#include "render/shadows/shadow_maps.h"
+
+namespace glimmer {
+
+class ShadowMapPass : public Pass {
+public:
+    ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array);
+    const char* name() const override { return array_ == ShadowArray::Sun ? "shadow_sun" : "shadow_point"; }
+    std::vector<gl::Program*> programs() override { return {&program_}; }
+    // Whenever a light of this kind has a shadow (so --stats lists the pass with ~0 ms on cached frames), except
+    // on later samples of an accumulated view (same camera: nothing to re-render).
+    bool runs(const FrameContext& frame) const override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    gl::Program program_;
+    ShadowArray array_;
+};
+
+}  // namespace glimmer

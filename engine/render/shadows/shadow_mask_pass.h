@@ -1,0 +1,28 @@
+// Shadow-mask pass (shaders/shadows/shadow_mask.frag): the visibility of every shadowed light (common/shadows.glsl: view
+// selection, bias, PCF) at every ShadowMaps::maskStep()-th G-buffer pixel, into ShadowMaps' RGBA8 mask array, one
+// channel per light, one draw per four lights. The lighting pass reads it back with a plane-aware 2 x 2
+// interpolation (at half resolution) or one texel per layer, instead of filtering every light's map inside its light
+// loop; at half resolution (shadow.half_res, the window's default on software renderers) the lookups run at a
+// quarter of the pixels (docs/shadows.md#cost).
+// State: no depth test, no blending, viewport = the mask's size.
+#pragma once
+#include <filesystem>
+
+#include "render/frame/pass.h"
+
+namespace glimmer {
+
+class ShadowMaskPass : public Pass {
+public:
+    explicit ShadowMaskPass(const std::filesystem::path& shaderRoot);
+    const char* name() const override { return "shadow_mask"; }
+    std::vector<gl::Program*> programs() override { return {&program_}; }
+    // With shadows on, except on later samples of an accumulated view (same G-buffer: the mask is still valid).
+    bool runs(const FrameContext& frame) const override;
+    void execute(const FrameContext& frame) override;
+
+private:
+    gl::Program program_;
+};
+
+}  // namespace glimmer

@@ -1,0 +1,397 @@
+// Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
+// Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
+// metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+#include "common/bindings.glsl"
+#define GLIMMER_LIGHTING_PASS 1   // lets method files read lighting-pass data (u_materials) that probes lack
+#include "common/frame.glsl"
+#include "common/brdf.glsl"
+#include "common/footprint.glsl"
+#include "common/glint_surface.glsl"
+#include "environment/prefiltered_lookup.glsl"
+#include "common/clearcoat.glsl"
+#include "common/light_incidence.glsl"
+#include "common/plane_aware_upsample.glsl"
+#include "lights/ltc.glsl"
+#include "lights/area_light.glsl"
+#ifdef SHADOWS
+#include "shadows/shadows.glsl"
+#endif
+
+#ifdef GLINT_POST_PASS
+// Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
+// loop and the IBL mode put glint radiance here instead of into o_color; the method's passes blur the occlusion, multiply,
+// blur the glints and add them (shaders/glints/wang2020/ (wang2020_glint_*.frag)). The IBL mode sets the environment glint (before occlusion) and
+// its visibility along the mirror direction.
+vec3 g_postEnvironmentGlint = vec3(0.0);
+float g_postVisibility = 1.0;
+layout(location = 1) out vec4 o_glintEnvironment;  // rgb: environment glints, a: visibility (glinty pixels)
+layout(location = 2) out vec4 o_glintLights;       // rgb: light glints, a: 1 on glinty pixels (occlusion-blur mask)
+#endif
+
+#include GLINT_METHOD_FILE
+#include IBL_MODE_FILE
+
+layout(binding = UNIT_GBUFFER_UV_DUVDX) uniform sampler2D g_uvDuvdx;
+layout(binding = UNIT_GBUFFER_DUVDY_MATERIAL) uniform sampler2D g_duvdyMaterial;
+layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
+layout(binding = UNIT_GBUFFER_TANGENT_METALLIC) uniform sampler2D g_tangentMetallic;
+layout(binding = UNIT_GBUFFER_BASE_COLOR_MASK) uniform sampler2D g_baseColorMask;
+layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+layout(binding = UNIT_GBUFFER_CLEARCOAT) uniform sampler2D g_clearcoat;   // KHR_materials_clearcoat (gbuffer.frag)
+// rgb: occlusion of the environment / ambient term, a: visibility (shaders/ao/ao_resolve.frag; white when off)
+layout(binding = UNIT_AMBIENT_OCCLUSION) uniform sampler2D u_ambientOcclusion;
+
+in vec2 v_ndc;
+layout(location = 0) out vec4 o_color;
+// The part of o_color that is the lights' specular on glinty materials: the TAA resolve keeps it out of its
+// neighbourhood clipping (shaders/image/taa_resolve.frag). Written only where TAA attaches a target.
+layout(location = 3) out vec4 o_glintPart;
+
+// TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
+// position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
+vec3 tangentPlanePoint(vec2 screen, vec3 anchor, vec3 n) {
+    vec2 ndc = screen / vec2(u_viewport.xy) * 2.0 - 1.0;
+    vec4 near = u_inverseViewProjection * vec4(ndc, 1.0, 1.0);   // reversed Z: depth 1 is the near plane
+    vec3 direction = normalize(near.xyz / near.w - u_cameraPosition.xyz);
+    float cosine = dot(direction, n);
+    if (abs(cosine) < 1e-3) return anchor;
+    float t = dot(anchor - u_cameraPosition.xyz, n) / cosine;
+    return t > 0.0 ? u_cameraPosition.xyz + direction * t : anchor;
+}
+
+// Moves the glint footprint of a jittered pixel to its unjittered centre. The jittered image is the unjittered one
+// moved by u_jitter.xy pixels, so that centre lies at pixel + 0.5 + u_jitter.xy here. The UV is taken as an affine
+// map of the tangent plane (exact for planar mappings), fitted to the G-buffer's derivatives at the jittered centre;
+// the unjittered centre and its one-pixel neighbours then give the UV, its derivatives (which change across the
+// screen under perspective: at grazing angles a half-pixel shift changes the footprint by 10-20%) and the position.
+void unjitterGlintFootprint(inout GlintSurface s, inout vec3 position) {
+    vec2 centre = vec2(s.pixel) + 0.5;
+    vec3 p = tangentPlanePoint(centre, position, s.n);
+    vec3 dx = tangentPlanePoint(centre + vec2(1.0, 0.0), position, s.n) - p;
+    vec3 dy = tangentPlanePoint(centre + vec2(0.0, 1.0), position, s.n) - p;
+    mat2 planeDerivatives = mat2(vec2(dot(dx, s.t), dot(dx, s.b)), vec2(dot(dy, s.t), dot(dy, s.b)));
+    if (abs(determinant(planeDerivatives)) < 1e-12) return;
+    mat2 planeToUv = mat2(s.duvdx, s.duvdy) * inverse(planeDerivatives);
+    vec2 moved = centre + u_jitter.xy;
+    vec3 q = tangentPlanePoint(moved, position, s.n);
+    vec3 qx = tangentPlanePoint(moved + vec2(1.0, 0.0), position, s.n) - q;
+    vec3 qy = tangentPlanePoint(moved + vec2(0.0, 1.0), position, s.n) - q;
+    s.uv += planeToUv * vec2(dot(q - p, s.t), dot(q - p, s.b));
+    s.duvdx = planeToUv * vec2(dot(qx, s.t), dot(qx, s.b));
+    s.duvdy = planeToUv * vec2(dot(qy, s.t), dot(qy, s.b));
+    position = q;
+}
+
+// Solid angle (sr) of a punctual or directional light seen from `position` (Kneiphof & Klein 2024: every light has
+// one): the sun's disk (spotOffsetRange.z, from its angular diameter), a point or spot light's sphere of its
+// radius (spotOffsetRange.z; 0 for a punctual light).
+float punctualSolidAngle(GpuLight light, vec3 position) {
+    if (light.vectorType.w < 0.5) return light.spotOffsetRange.z;
+    vec3 d = light.vectorType.xyz - position;
+    float sin2 = min(light.spotOffsetRange.z * light.spotOffsetRange.z / max(dot(d, d), 1e-12), 1.0);
+    return 2.0 * PI * (1.0 - sqrt(1.0 - sin2));
+}
+
+// The glint factor of an area light (multiplies its smooth LTC specular; expectation 1). Methods that define
+// GLINT_AREA_LIGHTS compute it themselves (glintAreaFactor); for the others it is their NDF at the light's centre
+// direction over the smooth NDF there: the light's glints are those of a point light at its centre
+// (shaders/glints/README.md "Extended lights").
+vec3 areaGlintFactor(GlintPixel glint, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+#ifdef GLINT_AREA_LIGHTS
+    return glintAreaFactor(glint, s, h, wi, wo);
+#else
+    float smoothD = D_smooth(h, s.alpha, s.ndf);
+    if (!(smoothD > 1e-30)) return vec3(1.0);
+#ifdef GLINT_COLOR_D
+    return glintColorD(glint, s, h, wi, wo) / smoothD;
+#else
+    return vec3(glintD(glint, s, h, wi, wo) / smoothD);
+#endif
+#endif
+}
+
+vec3 finiteOrZero(vec3 c) {
+    bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
+    return any(bad) ? vec3(0.0) : c;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(g_depth, pixel, 0).r;
+    int view = u_viewport.w;
+    if (depth <= 0.0) {   // reversed-Z clear value: nothing was drawn here
+        // The environment's radiance along the view ray (through the near plane, depth 1), else the sky colour.
+        vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
+                                : u_skyColor.rgb;
+        o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
+        o_glintPart = vec4(0.0);
+#ifdef GLINT_POST_PASS
+        o_glintEnvironment = vec4(0.0);
+        o_glintLights = vec4(0.0);
+#endif
+        return;
+    }
+    vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
+    vec4 duvdyMaterial = texelFetch(g_duvdyMaterial, pixel, 0);
+    vec4 normalAlpha = texelFetch(g_normalAlpha, pixel, 0);
+    vec4 tangentMetallic = texelFetch(g_tangentMetallic, pixel, 0);
+    vec4 baseColorMask = texelFetch(g_baseColorMask, pixel, 0);
+
+    int materialId = int(duvdyMaterial.z + 0.5);
+    GpuMaterial material = u_materials[materialId];
+    g_glintMaterial = materialId;   // the method's P_<NAME> read this material's parameters
+    GlintSurface s;
+    s.uv = uvDuvdx.xy;
+    s.duvdx = uvDuvdx.zw;
+    s.duvdy = duvdyMaterial.xy;
+    s.alpha = normalAlpha.w;
+    s.ndf = int(material.alphaMetallicNdfGlinty.z + 0.5);
+    s.densityScale = material.densityCutoff.x * baseColorMask.a;
+    s.materialId = materialId;
+    s.pixel = pixel;
+    s.n = normalize(normalAlpha.xyz);
+    s.t = normalize(tangentMetallic.xyz - s.n * dot(s.n, tangentMetallic.xyz));
+    s.b = duvdyMaterial.w * cross(s.n, s.t);
+#ifdef NON_GLINTY_PIXELS
+    // The pixels lighting_class.frag did not mark glinty (render/frame/lighting_pass.h): the compiler drops the
+    // method's code, and every other term is this shader's own.
+    const bool glinty = false;
+#else
+    bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
+#endif
+
+    const vec3 gbufferPosition = worldPosition(pixel, depth);
+    vec3 position = gbufferPosition;
+    // TAA jitters the projection by u_jitter.xy pixels. Glint methods filter their NDF over the pixel footprint
+    // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
+    // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
+    // second time and lose its peak (docs/image.md, "glints"). So with taa.stable_glints a glinty pixel is shaded
+    // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
+    // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
+    // geometric edges of glinty surfaces are still anti-aliased.
+    if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
+    s.position = position;
+    vec3 toEye = normalize(u_cameraPosition.xyz - position);
+    mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
+    vec3 wo = worldToShading * toEye;
+    vec3 baseColor = baseColorMask.rgb;
+    float metallic = tangentMetallic.w;
+    vec3 f0 = mix(vec3(0.04), baseColor, metallic);
+    vec3 diffuseAlbedo = (1.0 - metallic) * baseColor;
+
+    // KHR_materials_clearcoat (common/clearcoat.glsl): the coat's own lobe goes to coatRadiance; the base radiance
+    // (all of it, the method's glints included) is scaled by 1 - weight at the end. Uncoated pixels (weight 0)
+    // skip both, so their radiance is the uncoated shader's bit for bit.
+    vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
+    Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
+    vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
+    bool coated = coat.weight > 0.0;
+    vec3 coatRadiance = vec3(0.0);
+
+    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
+    // non-glinty variant never reads it (its debug views are not split off: render/frame/lighting_pass.h).
+#ifdef NON_GLINTY_PIXELS
+    GlintPixel glint;
+#else
+    GlintPixel glint = glintSetup(s);
+#endif
+
+    // Environment lighting by the selected IBL mode (shaders/environment/ibl/README.md), or the constant ambient when the
+    // environment is off (--env none).
+    // Ambient occlusion darkens this term only, never the lights (docs/ambient_occlusion.md).
+    // At ao.half_res the factor is interpolated from every second pixel (common/plane_aware_upsample.glsl); the
+    // taps are shared with the shadow mask when both run at half resolution.
+    vec4 occlusion;
+    ivec2 aoSize = textureSize(u_ambientOcclusion, 0);
+    int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;   // AmbientOcclusion::step(): a halved target is ceil(w / 2) wide
+    UpsampleTaps aoTaps;
+#ifdef SHADOWS
+    UpsampleTaps maskTaps;   // at the G-buffer's own position, as the mask's samples
+    if (u_shadowMask.x != 1)
+        maskTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, u_shadowMask.x,
+                                  shadowMaskLastTexel());
+#endif
+    if (aoSize == ivec2(1)) {
+        occlusion = texelFetch(u_ambientOcclusion, ivec2(0), 0);   // white: AO off
+    } else if (aoStep == 1) {
+        occlusion = texelFetch(u_ambientOcclusion, pixel, 0);
+    } else {
+        bool sharedTaps = false;
+#ifdef SHADOWS
+        sharedTaps = u_shadowMask.x == aoStep;
+        if (sharedTaps) aoTaps = maskTaps;
+#endif
+        if (!sharedTaps)
+            aoTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
+        occlusion = vec4(0.0);
+        for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
+        occlusion /= aoTaps.total;
+    }
+    vec3 radiance = occlusion.rgb * (envEnabled()
+        ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
+    vec3 environmentGlints = occlusion.rgb * g_environmentGlintPart;   // environment glints (the IBL mode's)
+    if (coated) {
+        // The coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror
+        // direction, from the prefiltered map and the reflection probes where the frame binds them (count 0
+        // otherwise); GGX table with F0 = 1 (the Fresnel is in the weight). Without an environment the constant
+        // ambient is reflected with the lobe's albedo taken as 1.
+        vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
+        if (envEnabled()) {
+            vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
+            coatEnvironment = envPrefilteredAt(position, reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
+        }
+        coatRadiance += occlusion.rgb * coat.weight * coatEnvironment;
+    }
+    float firstLightD = 0.0;
+    float firstLightVisibility = 0.0;
+    vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
+    vec3 glintPart = environmentGlints;   // otherwise: the same term, left in o_color and also written to o_glintPart
+    int lightCount = int(u_exposure.y);
+    int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
+#ifdef SHADOWS
+    vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
+    // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
+    shadowMaskVisibility(pixel, maskTaps, maskVisibility);
+#endif
+    // Punctual and directional lights. Area lights follow in a loop of their own: llvmpipe executes both sides of a
+    // branch, so one loop would make every light pay for the LTC integrals.
+    for (int i = 0; i < lightCount - areaLightCount; ++i) {
+        vec3 towardLight, irradiance;
+        lightIncidence(u_lights[i], position, towardLight, irradiance);
+        vec3 wi = worldToShading * towardLight;
+        // A coated pixel may see a light through its coat that its (normal-mapped) base faces away from.
+        bool coatLit = coated && dot(coat.n, towardLight) > 0.0 && coat.nDotV > 0.0;
+        if ((wi.z <= 0.0 || wo.z <= 0.0) && !coatLit) continue;
+        // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
+        // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
+#ifdef SHADOWS
+        // From the shadow mask (render/shadows/shadow_mask_pass.h: the maps are filtered there, at a quarter of the
+        // pixels by default).
+        float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+        float visibility = 1.0;   // shadow.enabled=0 (render/frame/lighting_pass.h)
+#endif
+        if (i == 0) firstLightVisibility = visibility;
+        if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
+        irradiance *= visibility;
+        if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
+        if (wi.z <= 0.0 || wo.z <= 0.0) continue;
+        vec3 h = normalize(wi + wo);
+        // The light's size for the glint methods (GlintLight): its solid angle and the integral of D(h) / (4 |l.h|)
+        // over it, D(h) Omega / (4 (l.h)) for a light this small (Kneiphof & Klein 2024, Sec. 4.3).
+        g_glintLight.area = false;
+        g_glintLight.solidAngle = punctualSolidAngle(u_lights[i], position);
+        g_glintLight.ndfIntegral = D_smooth(h, s.alpha, s.ndf) * g_glintLight.solidAngle / (4.0 * max(dot(wi, h), 1e-4));
+#ifdef GLINT_COLOR_D
+        // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
+        vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        float D = dot(colorD, vec3(1.0 / 3.0));
+        vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
+#else
+        float D = glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
+#endif
+        if (i == 0) firstLightD = D;
+#ifdef GLINT_POST_PASS
+        if (glinty) {
+            lightGlints += specular * irradiance * wi.z;
+            specular = vec3(0.0);
+        }
+#else
+        if (glinty) glintPart += specular * irradiance * wi.z;
+#endif
+        radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
+    }
+
+    // Area lights (lights/area_light.glsl): Lambertian emitters of radiance L; diffuse = albedo x L x their form
+    // factor, specular = L x (f0 A + B) x the specular LTC's integral over them (Heitz et al. 2016, Eq. 7 and
+    // Sec. 4.3), times the glint factor of the method on glinty pixels (Kneiphof & Klein 2024, Sec. 4: the glint
+    // factor multiplies the LTC specular).
+    if (areaLightCount > 0 && wo.z > 0.0) {
+        LtcPixel ltc = ltcSetup(s.n, toEye, s.alpha, s.ndf);   // once per pixel, shared by the area lights
+        vec3 specularAlbedo = f0 * ltc.splitSum.x + ltc.splitSum.y;
+        for (int i = lightCount - areaLightCount; i < lightCount; ++i) {
+            AreaLightGeometry g = areaLightGeometry(u_lights[i], position, ltc.toFrame);
+            if (!g.visible) continue;
+#ifdef SHADOWS
+            float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+            float visibility = 1.0;
+#endif
+            if (i == 0) firstLightVisibility = visibility;
+            if (visibility <= 0.0) continue;
+            vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
+            // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of the
+            // integrals in the program; ltcLoopCount keeps the compiler from unrolling it).
+            float integrals[2];
+            for (int k = 0; k < ltcLoopCount(2); ++k)
+                integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV, k == 0 ? mat3(1.0) : ltc.invSpecular);
+            // Spheres: the cap's exact form factor (the disk of their silhouette gives the same, less exactly).
+            float diffuse = g.sinSigma2 > 0.0 ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : integrals[0];
+            float specularIntegral = integrals[1];
+            vec3 specular = specularAlbedo * specularIntegral;
+            if (glinty && specularIntegral > 0.0) {
+                // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
+                // angular cell of deliot2023's grid and the NDF value of the fallback.
+                vec3 wi = worldToShading * g.towardCentre;
+                vec3 h = normalize(vec3(wi.xy, max(wi.z, 1e-4)) + wo);
+                g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral, g.shape,
+                                          g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
+                specular *= areaGlintFactor(glint, s, h, wi, wo);
+#ifdef GLINT_POST_PASS
+                lightGlints += specular * L;
+                specular = vec3(0.0);
+#else
+                glintPart += specular * L;
+#endif
+            }
+            radiance += (diffuseAlbedo * diffuse + specular) * L;
+            if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
+                // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
+                vec3 towardLight, irradiance;
+                lightIncidence(u_lights[i], position, towardLight, irradiance);
+                coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
+            }
+        }
+    }
+
+    if (coated) {
+        float baseShare = 1.0 - coat.weight;
+        radiance = radiance * baseShare + coatRadiance;
+        glintPart *= baseShare;
+        lightGlints *= baseShare;
+#ifdef GLINT_POST_PASS
+        g_postEnvironmentGlint *= baseShare;
+#endif
+    }
+
+    vec4 result;
+    switch (view) {
+        case VIEW_ALBEDO: result = vec4(baseColor, 1.0); break;
+        case VIEW_NORMAL: result = vec4(s.n, 1.0); break;
+        case VIEW_DEPTH: result = vec4(vec3(distance(position, u_cameraPosition.xyz)), 1.0); break;
+        case VIEW_UV: result = vec4(s.uv, 0.0, 1.0); break;
+        case VIEW_DUVDX: result = vec4(s.duvdx, 0.0, 1.0); break;
+        case VIEW_DUVDY: result = vec4(s.duvdy, 0.0, 1.0); break;
+        case VIEW_GLINT: result = vec4(vec3(firstLightD), 1.0); break;
+        case VIEW_FOOTPRINT: result = glintFootprintAOV(glint, s); break;
+        case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
+        case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
+        case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
+        case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
+        case VIEW_SHADOW: result = vec4(vec3(firstLightVisibility), 1.0); break;
+        case VIEW_CLEARCOAT: result = coatTexelView; break;
+        default: result = vec4(radiance, 1.0); break;
+    }
+    o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
+    // Methods with a glint post pass add their (blurred) glints after this pass: TAA clips them with the rest.
+    bool finiteResult = all(equal(o_color.rgb, result.rgb));
+    o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
+#ifdef GLINT_POST_PASS
+    bool postGlints = view == VIEW_FINAL && glinty;
+    o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
+                                    : vec4(0.0);
+    o_glintLights = postGlints ? vec4(finiteOrZero(lightGlints), 1.0) : vec4(0.0);
+#endif
+}

@@ -1,0 +1,36 @@
+// Shadow mask (render/shadows/shadow_mask_pass.h): lightVisibility (common/shadows.glsl) of the four shadowed lights
+// of mask layer u_layer (slots 4 x u_layer .. + 3) at one
+// G-buffer pixel per mask texel (every second pixel in x and y at shadow.half_res=1), with the same position,
+// normal and light direction as the lighting pass, so a sample pixel's visibility is what the lighting pass would
+// compute there. Sky pixels and missing lights: 1.
+#include "common/bindings.glsl"
+#include "common/frame.glsl"
+#include "common/light_incidence.glsl"
+#include "shadows/shadows.glsl"
+
+layout(binding = UNIT_GBUFFER_NORMAL_ALPHA) uniform sampler2D g_normalAlpha;
+layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D g_depth;
+
+layout(location = 0) uniform int u_layer;
+
+out vec4 o_visibility;
+
+void main() {
+    ivec2 pixel = shadowMaskPixel(ivec2(gl_FragCoord.xy), u_viewport.xy);
+    float depth = texelFetch(g_depth, pixel, 0).r;
+    vec4 visibility = vec4(1.0);
+    if (depth > 0.0) {
+        vec3 position = worldPosition(pixel, depth);
+        vec3 n = normalize(texelFetch(g_normalAlpha, pixel, 0).xyz);
+        for (int c = 0; c < 4; ++c) {
+            if (4 * u_layer + c >= u_shadowMask.y) break;
+            int i = u_shadowSlotLights[u_layer][c];
+            vec3 towardLight, irradiance;
+            lightIncidence(u_lights[i], position, towardLight, irradiance);
+            // Size: radius of a point or spot light, of a disk of an area light's area (render/gpu_scene.cpp).
+            visibility[c] = lightVisibility(i, u_lights[i].vectorType.xyz, u_lights[i].vectorType.w > 0.5 ? u_lights[i].spotOffsetRange.z : 0.0,
+                                            position, n, towardLight);
+        }
+    }
+    o_visibility = visibility;
+}
