@@ -92,7 +92,7 @@ struct Rig {
     }
     std::vector<float> render(const RenderSettings& settings) {
         renderer->setSettings(settings);
-        renderer->render(scene, *gpu, scene.cameras[0], size, size);
+        renderer->renderView(scene, *gpu, scene.cameras[0], size, size);
         return renderer->readHdr();
     }
     // The pixel (bottom-up, GL order) a world point projects to.

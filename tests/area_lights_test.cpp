@@ -83,7 +83,7 @@ struct AreaRig {
         settings.common["ao.enabled"] = 0.0f;
         gpu->updateMaterialsAndLights(scene);
         renderer->setSettings(settings);
-        renderer->render(scene, *gpu, camera, size, size);
+        renderer->renderView(scene, *gpu, camera, size, size);
         return renderer->readHdr();
     }
     // The plane point seen through pixel (x, y) (bottom-up rows, as readHdr), or false.

@@ -23,12 +23,12 @@ TEST(AsyncGpuTimers, ResultsArriveLateWithEveryPassNamedAndNoWallClock) {
         Renderer renderer(defaultShaderDir(), RenderSettings{});
         renderer.setAsyncGpuTimers(true);
         const Camera& camera = scene.camera("");
-        renderer.render(scene, gpuScene, camera, 64, 64);
+        renderer.renderView(scene, gpuScene, camera, 64, 64);
         EXPECT_TRUE(renderer.passTimings().empty()) << "a frame's own queries cannot be read without waiting";
         std::vector<std::string> names;
         for (int frame = 0; frame < 12 && renderer.passTimings().empty(); ++frame) {
             glFinish();  // the test may wait so that results are surely available; the renderer must not
-            renderer.render(scene, gpuScene, camera, 64, 64);
+            renderer.renderView(scene, gpuScene, camera, 64, 64);
         }
         ASSERT_FALSE(renderer.passTimings().empty());
         for (const PassTiming& t : renderer.passTimings()) {
@@ -41,7 +41,7 @@ TEST(AsyncGpuTimers, ResultsArriveLateWithEveryPassNamedAndNoWallClock) {
         EXPECT_EQ(names.back(), "tonemap");
 
         // measurePasses still times with the wall clock, for this frame.
-        renderer.render(scene, gpuScene, camera, 64, 64, true);
+        renderer.renderView(scene, gpuScene, camera, 64, 64, true);
         ASSERT_FALSE(renderer.passTimings().empty());
         EXPECT_GT(renderer.passTimings().front().wallMs, 0.0);
     }
@@ -57,7 +57,7 @@ TEST(PassTimers, GpuTimeNeverExceedsTheWallTimeAroundThePass) {
         GpuScene gpuScene(scene);
         Renderer renderer(defaultShaderDir(), RenderSettings{});
         const Camera& camera = scene.camera("");
-        renderer.render(scene, gpuScene, camera, 64, 36, true);   // the first frame of the context, measured
+        renderer.renderView(scene, gpuScene, camera, 64, 36, true);   // the first frame of the context, measured
         // The frame's passes, after the sky-visibility bake or cache load of this new scene (wall time only).
         // On-demand work of a new scene (names with a dot: the sky-visibility bake or cache load, the reflection
         // probes' capture and prefilter) comes first, then the frame's passes (shadow_sun: plane90's sun).
@@ -84,7 +84,7 @@ TEST(PassTimers, GpuTimeNeverExceedsTheWallTimeAroundThePass) {
         int readouts = 0;
         for (int frame = 0; frame < 8; ++frame) {
             glFinish();
-            renderer.render(scene, gpuScene, camera, 64, 36);
+            renderer.renderView(scene, gpuScene, camera, 64, 36);
             for (const PassTiming& t : renderer.passTimings()) {
                 ++readouts;
                 EXPECT_TRUE(std::isnan(t.gpuMs) || t.gpuMs <= clock.elapsedMs())

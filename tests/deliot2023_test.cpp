@@ -540,7 +540,7 @@ TEST(Deliot2023Coherence, CameraShiftByWholePixelsShiftsGlints) {
     ASSERT_NEAR(camera.position.y, 2.0f, 1e-6f);   // looking straight down from 2 m, screen x = world +x
     double pixelWorld = 2.0 * 2.0 * std::tan(glm::radians(camera.verticalFovDegrees) / 2.0) / size;
     auto renderD = [&](const Camera& cam) {
-        renderer.render(scene, gpuScene, cam, size, size);
+        renderer.renderView(scene, gpuScene, cam, size, size);
         std::vector<float> hdr = renderer.readHdr();
         std::vector<double> d(size_t(size) * size);
         for (size_t i = 0; i < d.size(); ++i) d[i] = hdr[4 * i];

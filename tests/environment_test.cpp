@@ -138,7 +138,7 @@ struct SphereRig {
     std::vector<float> render(const RenderSettings& settings) {
         gpu->updateMaterialsAndLights(scene);
         renderer->setSettings(settings);
-        renderer->render(scene, *gpu, scene.cameras[0], size, size);
+        renderer->renderView(scene, *gpu, scene.cameras[0], size, size);
         return renderer->readHdr();
     }
     glm::dvec3 viewDirection(int x, int y) const {   // unit vector from the surface towards the eye

@@ -191,9 +191,9 @@ TEST(LightingSplit, SplitEqualsUnsplitAndItsClassesAreTheGlintyPixels) {
 
     // The classes of the last (split) frame.
     session.context().makeCurrent();
-    const FrameTargets& targets = session.renderer().targets();
+    const GLuint shadingClass = session.renderer().resources().get(FrameResource::ShadingClass).texture();
     std::vector<float> classes(size_t(request.width) * request.height);
-    glGetTextureImage(targets.shadingClassTexture(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+    glGetTextureImage(shadingClass, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                       GLsizei(classes.size() * sizeof(float)), classes.data());
     size_t glinty = 0, mismatched = 0;
     for (size_t i = 0; i < classes.size(); ++i) {

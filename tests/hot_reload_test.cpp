@@ -92,7 +92,7 @@ struct Fixture {
         gpuScene.reset();
     }
     std::vector<uint8_t> render() {
-        renderer->render(scene, *gpuScene, camera, 64, 48);
+        renderer->renderView(scene, *gpuScene, camera, 64, 48);
         return renderer->readDisplay();
     }
 };

@@ -331,10 +331,8 @@ public:
             renderer = std::make_unique<Renderer>(defaultShaderDir(), settings);
         else
             renderer->setSettings(settings);
-        for (int i = 0; i < spp; ++i) {
-            renderer->setSampleIndex(uint32_t(i));
-            renderer->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
-        }
+        View view{.camera = scene_.cameras.front(), .width = size, .height = size};
+        renderer->renderAccumulated(scene_, *gpuScene_, view, spp);
         glFinish();
         return renderer->readHdr();
     }
@@ -478,8 +476,7 @@ TEST(Kemppinen2025Ibl, RenderedSampleMatchesCpuEstimatorPerPixel) {
         RenderSettings s = settings;
         s.debugView = findAov(aov).viewId;
         renderer->setSettings(s);
-        renderer->setSampleIndex(0);
-        renderer->render(scene, *gpuScene, scene.cameras.front(), size, size);
+        renderer->renderView(scene, *gpuScene, scene.cameras.front(), size, size);
         glFinish();
         return renderer->readHdr();
     };

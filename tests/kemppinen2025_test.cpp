@@ -67,7 +67,7 @@ public:
             renderer_ = std::make_unique<Renderer>(defaultShaderDir(), settings);
         else
             renderer_->setSettings(settings);
-        renderer_->render(scene_, *gpuScene_, scene_.cameras.front(), size, size);
+        renderer_->renderView(scene_, *gpuScene_, scene_.cameras.front(), size, size);
         glFinish();
         return renderer_->readHdr();
     }
@@ -206,8 +206,8 @@ static void expectShaderMatchesCpu(GlintRig& rig, const RenderSettings& settings
             s.uv = {uv[4 * i], uv[4 * i + 1]};
             s.duvdx = {dx[4 * i], dx[4 * i + 1]};
             s.duvdy = {dy[4 * i], dy[4 * i + 1]};
-            s.alpha = settings.common_("material.alpha");
-            s.ndf = int(settings.common_("material.ndf"));
+            s.alpha = settings.value(param::material_alpha);
+            s.ndf = int(settings.value(param::material_ndf));
             glm::dvec3 p = planePoint(camera, size, x + 0.5, y + 0.5);
             s.position = p;
             s.normal = {0, 1, 0};

@@ -12,6 +12,7 @@
 #include "platform/context.h"
 #include "render/gpu_scene.h"
 #include "render/probes/reflection_probe_placement.h"
+#include "render/probes/reflection_probes.h"
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
@@ -51,7 +52,7 @@ struct ProbeRig {
         for (const std::string& s : sets) settings.apply(s);
         gpu->updateMaterialsAndLights(scene);
         renderer->setSettings(settings);
-        renderer->render(scene, *gpu, scene.cameras[0], kSize, kSize, measure);
+        renderer->renderView(scene, *gpu, scene.cameras[0], kSize, kSize, measure);
         return renderer->readHdr();
     }
     // The pixel that shows world point p (GL rows, bottom first).

@@ -138,7 +138,7 @@ TEST(RegularSamplingObjectEnvironment, ReflectionFollowsAMovedNeighbour) {
         settings.apply("ibl.object_map_size=64");
         GpuScene gpuScene(scene);
         Renderer renderer(defaultShaderDir(), settings);
-        renderer.render(scene, gpuScene, camera, size, size);
+        renderer.renderView(scene, gpuScene, camera, size, size);
         std::vector<float> hdr = renderer.readHdr();
         static int image = 0;
         std::filesystem::path dir = std::filesystem::path(GLIMMER_TEST_OUTPUT_DIR) / "regular_sampling";
@@ -147,7 +147,7 @@ TEST(RegularSamplingObjectEnvironment, ReflectionFollowsAMovedNeighbour) {
         RenderSettings materialView = settings;
         materialView.debugView = findAov("material").viewId;
         renderer.setSettings(materialView);
-        renderer.render(scene, gpuScene, camera, size, size);
+        renderer.renderView(scene, gpuScene, camera, size, size);
         std::vector<float> ids = renderer.readHdr();
         glm::dvec2 sum(0.0), count(0.0);
         for (int y = 0; y < size; ++y)

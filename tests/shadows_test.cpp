@@ -98,7 +98,7 @@ struct ShadowRig {
     std::vector<float> render(const RenderSettings& settings, const Camera& camera) {
         gpu->updateMaterialsAndLights(scene);
         renderer->setSettings(settings);
-        renderer->render(scene, *gpu, camera, size, size);
+        renderer->renderView(scene, *gpu, camera, size, size);
         return renderer->readHdr();
     }
     std::vector<float> visibility(RenderSettings settings, const Camera& camera) {

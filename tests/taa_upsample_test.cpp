@@ -176,13 +176,13 @@ void printPassCosts(OffscreenSession& session, const RenderRequest& request, flo
     UpscalePass upscale(defaultShaderDir());
     gl::Texture target = gl::createTexture2D(GL_RGBA8, request.width, request.height);
     gl::Framebuffer fbo = gl::createFramebuffer("upscale target", {target.id()});
-    const FrameTargets& t = session.renderer().targets();
+    const Renderer& renderer = session.renderer();
     std::vector<double> upscaleMs;
     for (int r = 0; r < 7; ++r) {
         glFinish();
         Stopwatch clock;
-        upscale.draw(t.displayTexture(), t.displayFramebuffer(), t.postWidth(), t.postHeight(), fbo.id(), request.width,
-                     request.height);
+        upscale.draw(renderer.displayTexture(), renderer.displayFramebuffer(), renderer.lastView().postWidth,
+                     renderer.lastView().postHeight, fbo.id(), request.width, request.height);
         glFinish();
         upscaleMs.push_back(clock.elapsedMs());
     }
@@ -279,7 +279,7 @@ TEST(ImageTaau, UpsampleOffResolvesAtTheRenderSizeThenUpscales) {
     session.renderer().resetHistory();
     RenderResult resolvedSmall = session.render(off);
     EXPECT_EQ(resolvedSmall.stats["upscale"], "catmull-rom");
-    EXPECT_EQ(session.renderer().targets().postWidth(), 96) << "the post passes must run at the render size";
+    EXPECT_EQ(session.renderer().lastView().postWidth, 96) << "the post passes must run at the render size";
 
     RenderRequest on = off;
     on.settings.apply("taa.upsample=1");

@@ -350,8 +350,8 @@ TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {
     Rect row = *ui.widgetRect("material.alpha");
     PanelResult r = panelFrame(ui, clickAt(row.at(0.5f, 0.5f)), settings, window, methods);
     EXPECT_TRUE(r.settingsChanged);
-    ASSERT_TRUE(settings.isSet("material.alpha"));
-    EXPECT_NEAR(settings.common_("material.alpha"), sliderValue(alpha->spec, 0.5f), 1e-6f);
+    ASSERT_TRUE(settings.isSet(param::material_alpha));
+    EXPECT_NEAR(settings.value(param::material_alpha), sliderValue(alpha->spec, 0.5f), 1e-6f);
 
     ui.setOpenSection(kPanelId, commonGroupTitle(""));
     panelFrame(ui, {}, settings, window, methods);

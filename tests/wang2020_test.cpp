@@ -580,8 +580,8 @@ TEST(Wang2020PostPass, BlursMatchCpuReference) {
     };
     std::vector<float> raw = render(1, 1);
     std::vector<float> blurred = render(9, 3);
-    std::vector<float> environment = session.renderer().readGlintEnvironment();
-    std::vector<float> lights = session.renderer().readGlintLights();
+    std::vector<float> environment = session.renderer().readMethodTarget(0);
+    std::vector<float> lights = session.renderer().readMethodTarget(1);
     ASSERT_EQ(environment.size(), raw.size());
 
     size_t glinty = 0, occluded = 0;

@@ -88,9 +88,9 @@ int runViewCommand(const std::vector<std::string>& argList) {
     // Headless runs (--frames) keep the offscreen defaults so that their screenshot equals `glimmer render`.
     if (options.frameLimit == 0) {
         RenderSettings& settings = options.request.settings;
-        if (!settings.isSet("aa")) settings.apply("aa=taa");
-        if (!settings.isSet("bloom.strength")) settings.apply("bloom.strength=0.04");
-        if (!settings.isSet("exposure") && !settings.isSet("exposure.auto")) settings.apply("exposure=auto");
+        if (!settings.isSet(param::aa)) settings.apply("aa=taa");
+        if (!settings.isSet(param::bloom_strength)) settings.apply("bloom.strength=0.04");
+        if (!settings.isSet(param::exposure) && !settings.isSet(param::exposure_auto)) settings.apply("exposure=auto");
     }
     if (options.screenshot) {
         imageFormatForPath(*options.screenshot, "--screenshot");

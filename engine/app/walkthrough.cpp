@@ -120,28 +120,28 @@ public:
         // On a software renderer the interactive window reads material textures trilinearly unless told otherwise:
         // llvmpipe's anisotropic filtering was about half the frame at render scale 0.25 (docs/performance.md).
         // Screenshot runs keep the offscreen default so that they equal `glimmer render`.
-        if (softwareRenderer_ && !options.screenshot && !settings.isSet("texture_anisotropy"))
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet(param::texture_anisotropy))
             settings.apply("texture_anisotropy=1");
         // Likewise shadows at every second pixel (shadow.half_res, docs/shadows.md#cost: the frame with shadows
         // 1.04-1.12x the frame without at 1280x720 instead of 1.22-1.42x), at the price of shadow and light
         // features under two pixels.
-        if (softwareRenderer_ && !options.screenshot && !settings.isSet("shadow.half_res"))
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet(param::shadow_half_res))
             settings.apply("shadow.half_res=1");
         // And ambient occlusion at every second pixel (ao.half_res, docs/ambient_occlusion.md#half-resolution-aohalf_res).
-        if (softwareRenderer_ && !options.screenshot && !settings.isSet("ao.half_res"))
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet(param::ao_half_res))
             settings.apply("ao.half_res=1");
         // And TAA resolved at the render size, its post passes (bloom, exposure, tone mapping) there too, with the
         // window's Catmull-Rom upscale after them (taa.upsample=0): at scale 0.25 in a 1280x720 window the
         // upsampling resolve and the post passes at the window's size took about half of the frame
         // (docs/performance.md). GPUs keep TAA upsampling.
-        if (softwareRenderer_ && !options.screenshot && !settings.isSet("taa.upsample"))
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet(param::taa_upsample))
             settings.apply("taa.upsample=0");
         // And the geometry at the level of detail that keeps its error within a pixel of the render size
         // (lod.pixel_error=1): the G-buffer's vertex work is serial on llvmpipe.
-        if (softwareRenderer_ && !options.screenshot && !settings.isSet("lod.pixel_error"))
+        if (softwareRenderer_ && !options.screenshot && !settings.isSet(param::lod_pixel_error))
             settings.apply("lod.pixel_error=1");
         // Every window shades glinty and other pixels with separate programs (render/frame/lighting_pass.h).
-        if (!options.screenshot && !settings.isSet("lighting.split_glinty")) settings.apply("lighting.split_glinty=1");
+        if (!options.screenshot && !settings.isSet(param::lighting_split_glinty)) settings.apply("lighting.split_glinty=1");
         renderer_ = std::make_unique<Renderer>(shaderRoot, settings);
         renderer_->setAsyncGpuTimers(true);
         uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);
@@ -958,15 +958,16 @@ private:
         accumulatedWidth_ = width;
         accumulatedHeight_ = height;
         accumulatedSettingsVersion_ = settingsVersion_;
-        renderer_->setSampleIndex(sampleIndex_);
     }
 
     void drawFrame(int width, int height) {
         int renderW = width, renderH = height;
         resolution_->internalSize(width, height, renderW, renderH);
         updateAccumulation(renderW, renderH);
-        renderer_->setOutputSize(width, height);   // aa=taa below scale 1 resolves to the window (TAAU)
-        renderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
+        // aa=taa below scale 1 resolves to the window size (TAAU).
+        View view{.camera = motion_->camera(), .width = renderW, .height = renderH, .outputWidth = width,
+                  .outputHeight = height, .sampleIndex = sampleIndex_};
+        renderer_->renderView(scene_, *gpuScene_, view);
         present_.resize(width, height);
         resolution_->present(*renderer_, present_.framebuffer(), width, height);
         if (split_) drawSplit(width, height);
@@ -1001,11 +1002,12 @@ private:
             split_ = false;
             return;
         }
-        splitRenderer_->setSampleIndex(sampleIndex_);  // accumulates in step with the left side
         int renderW = width, renderH = height;
         resolution_->internalSize(width, height, renderW, renderH);
-        splitRenderer_->setOutputSize(width, height);
-        splitRenderer_->render(scene_, *gpuScene_, motion_->camera(), renderW, renderH);
+        // The same view as the left side, accumulating in step with it.
+        View view{.camera = motion_->camera(), .width = renderW, .height = renderH, .outputWidth = width,
+                  .outputHeight = height, .sampleIndex = sampleIndex_};
+        splitRenderer_->renderView(scene_, *gpuScene_, view);
         int x = std::clamp(int(std::lround(splitFraction_ * float(width))), 0, width);
         resolution_->present(*splitRenderer_, present_.framebuffer(), width, height, x);
         const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
@@ -1025,7 +1027,7 @@ private:
 
     // PNG: the window image (with the UI when shown). EXR: the renderer's HDR radiance (or debug view), linear.
     void writeScreenshot(const std::string& path) {
-        int width = renderer_->targets().postWidth(), height = renderer_->targets().postHeight();
+        int width = renderer_->lastView().postWidth, height = renderer_->lastView().postHeight;
         if (imageFormatForPath(path, "--screenshot") == ImageFormat::Exr) {
             std::vector<float> hdr = renderer_->readHdr();
             writeExr(path, hdr.data(), width, height);

@@ -22,10 +22,10 @@ void WindowResolution::addFrame(double frameMs) {
 }
 
 void WindowResolution::present(const Renderer& renderer, GLuint target, int windowW, int windowH, int fromColumn) {
-    const FrameTargets& t = renderer.targets();
     // Under TAA upsampling the display image already has the window's size and this is a copy.
-    upscale_.draw(t.displayTexture(), t.displayFramebuffer(), t.postWidth(), t.postHeight(), target, windowW, windowH,
-                  fromColumn);
+    const View& view = renderer.lastView();
+    upscale_.draw(renderer.displayTexture(), renderer.displayFramebuffer(), view.postWidth, view.postHeight, target,
+                  windowW, windowH, fromColumn);
 }
 
 std::string WindowResolution::statsText() const {

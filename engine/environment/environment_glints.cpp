@@ -40,7 +40,6 @@ EnvironmentGlintSettings environmentGlintSettings(const IblMode& mode, const std
 EnvironmentGlints::EnvironmentGlints(std::filesystem::path shaderRoot) : shaderRoot_(std::move(shaderRoot)) {
     block_ = gl::createBuffer(kHeaderBytes + kMaxGroups * 8, nullptr);
     std::vector<unsigned char> zero(kHeaderBytes, 0);
-    emptyBlock_ = gl::createBuffer(kHeaderBytes, zero.data(), 0);
     glNamedBufferSubData(block_.id(), 0, kHeaderBytes, zero.data());
     for (gl::Texture& scratch : scratch_) {
         GLuint id = 0;
@@ -53,7 +52,6 @@ EnvironmentGlints::EnvironmentGlints(std::filesystem::path shaderRoot) : shaderR
         scratch = gl::Texture(id);
     }
     environmentWeights_ = cubeArray(kFaceSize, kLevels, 6 * 4);   // 2 slices x 2 NDFs
-    emptyArray_ = cubeArray(1, 1, 6);
 }
 
 EnvironmentGlints::~EnvironmentGlints() = default;
@@ -138,12 +136,6 @@ std::vector<std::pair<std::string, double>> EnvironmentGlints::update(const Envi
     key_ = key;
     ++builds_;
     return {{"env_glints.levels", elapsedMs(start)}};
-}
-
-void EnvironmentGlints::bind(bool active) const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ENV_GLINTS, active && !key_.empty() ? block_.id() : emptyBlock_.id());
-    glBindTextureUnit(UNIT_ENV_GLINT_WEIGHTS, active ? environmentWeights_.id() : emptyArray_.id());
-    glBindTextureUnit(UNIT_PROBE_GLINT_WEIGHTS, active && probeWeights_ ? probeWeights_.id() : emptyArray_.id());
 }
 
 std::vector<float> EnvironmentGlints::levels() const {

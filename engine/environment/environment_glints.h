@@ -61,11 +61,13 @@ public:
     std::vector<std::pair<std::string, double>> update(const EnvironmentGlintSettings& settings, GLuint sourceCube,
                                                        int sourceFaceSize, const std::string& environmentKey,
                                                        const Probes& probes, bool measure);
-    // Binds the level block and both weight arrays (common/bindings.glsl BINDING_ENV_GLINTS, units 34 and 35);
-    // `active` false binds a block with no levels (the lighting pass then draws no environment glints).
-    void bind(bool active) const;
+    // What the lighting pass binds (render/frame/environment_glints_pass.h): the level block (BINDING_ENV_GLINTS) and
+    // the environment's and the probes' weights (cube-map arrays; layer = slice x 2 + NDF, probes (probe x 2 + slice)
+    // x 2 + NDF); all 0 before the first build.
+    bool built() const { return !key_.empty(); }
+    GLuint levelBlock() const { return built() ? block_.id() : 0; }
 
-    // For tests: the levels' radiance (read back), the weight arrays.
+    // The levels' radiance and count (read back, for tests and stats).
     std::vector<float> levels() const;
     int levelCount() const;
     GLuint environmentWeights() const { return environmentWeights_.id(); }
@@ -81,9 +83,9 @@ private:
     std::filesystem::path shaderRoot_;
     gl::Program reduceTexels_, reduceGroups_, weights_, probeWeightsProgram_;
     std::unique_ptr<CubePrefilter> prefilter_;
-    gl::Buffer block_, emptyBlock_;
+    gl::Buffer block_;
     gl::Texture scratch_[2];                        // level-0 weights with a box mip chain (the prefilter's source)
-    gl::Texture environmentWeights_, probeWeights_, emptyArray_;
+    gl::Texture environmentWeights_, probeWeights_;
     std::string key_;
     int probeCount_ = 0;
     int builds_ = 0;

@@ -51,4 +51,30 @@ Framebuffer createFramebuffer(const char* label, std::initializer_list<GLuint> c
     return framebuffer;
 }
 
+GLuint AttachedFramebuffer::get(const char* label, const std::vector<GLuint>& colors, GLuint depth,
+                                const std::vector<uint64_t>& versions) {
+    if (framebuffer_ && colors == colors_ && depth == depth_ && versions == versions_) return framebuffer_.id();
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    Framebuffer framebuffer(id);
+    glObjectLabel(GL_FRAMEBUFFER, id, -1, label);
+    std::vector<GLenum> drawBuffers;
+    for (size_t i = 0; i < colors.size(); ++i) {
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(i);
+        if (colors[i]) glNamedFramebufferTexture(id, attachment, colors[i], 0);
+        drawBuffers.push_back(colors[i] ? attachment : GL_NONE);
+    }
+    glNamedFramebufferDrawBuffers(id, GLsizei(drawBuffers.size()), drawBuffers.data());
+    if (drawBuffers.empty()) glNamedFramebufferDrawBuffer(id, GL_NONE);
+    if (depth) glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth, 0);
+    const GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(std::string("framebuffer ") + label + " incomplete (status 0x" + std::to_string(status) + ")");
+    framebuffer_ = std::move(framebuffer);
+    colors_ = colors;
+    depth_ = depth;
+    versions_ = versions;
+    return framebuffer_.id();
+}
+
 }  // namespace glimmer::gl

@@ -4,7 +4,9 @@
 
 #include <utility>
 
+#include <cstdint>
 #include <initializer_list>
+#include <vector>
 
 namespace glimmer::gl {
 
@@ -57,5 +59,21 @@ Texture createConstantTexture(float r, float g, float b, float a);
 // Framebuffer with `colors` on attachments 0.. (all drawn to, in order) and an optional depth attachment, labelled
 // for debuggers; throws an Error naming `label` when incomplete.
 Framebuffer createFramebuffer(const char* label, std::initializer_list<GLuint> colors, GLuint depth = 0);
+
+// A framebuffer over textures that other code owns and may reallocate (a pass drawing into frame resources): get()
+// returns the same framebuffer while the attachments and their `versions` stay the same, and rebuilds it
+// otherwise. A version must change whenever its texture is reallocated (FrameImage::serial does): texture names
+// alone are not enough, since GL reuses the name of a deleted texture. A zero colour texture leaves its location
+// without an attachment (GL_NONE in the draw buffers).
+class AttachedFramebuffer {
+public:
+    GLuint get(const char* label, const std::vector<GLuint>& colors, GLuint depth, const std::vector<uint64_t>& versions);
+
+private:
+    std::vector<GLuint> colors_;
+    GLuint depth_ = 0;
+    std::vector<uint64_t> versions_;
+    Framebuffer framebuffer_;
+};
 
 }  // namespace glimmer::gl

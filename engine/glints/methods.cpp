@@ -172,7 +172,9 @@ static GlintMethod wang2020Method() {
              {"blur_glints", 3.0f, 1.0f, 15.0f,
               "taps of the Gaussian blur of the glints (Sec. 4.4; paper 3; 1 = none; odd)", {}, true}},
             createWang2020Resources};
-    method.glintPostPass = true;   // Sec. 4.4: the lighting pass leaves the glints to the post pass
+    // Sec. 4.4: the lighting pass leaves the glints to the post pass. RGBA32F: a micro-scale glint can exceed
+    // half-float range (one particle's radiance over a whole footprint).
+    method.lightingTargets = {{"wang2020 environment glints", GL_RGBA32F}, {"wang2020 light glints", GL_RGBA32F}};
     method.defaultIbl = "wang2020";   // Sec. 4: its own environment glints (the IBL mode of the same name)
     method.createPasses = glintpost::createPasses;
     // N, gamma and roughness shape the quadtree and the DPF tables, built once for the densest glinty material;

@@ -43,8 +43,8 @@ struct MethodPassFrame {
     // Weight of this frame's radiance in the HDR mean: 1, or 1 / (k + 1) for sample k of an accumulating IBL mode.
     float blendWeight = 1.0f;
     unsigned hdrFramebuffer = 0;           // the HDR radiance target, where the pass adds its result
-    unsigned glintEnvironment = 0;         // the lighting pass's glint targets (GlintMethod::glintPostPass)
-    unsigned glintLights = 0;
+    // The method's lighting targets (GlintMethod::lightingTargets, in that order) as the lighting pass wrote them.
+    std::vector<unsigned> lightingTargets;
     unsigned depth = 0;                    // the G-buffer's depth (reversed Z)
     unsigned emptyVao = 0;                 // bound for full-screen triangles
 };
@@ -62,6 +62,13 @@ public:
 };
 using MethodPassList = std::vector<std::unique_ptr<MethodPass>>;
 
+// A target the lighting pass writes for the method (GlintMethod::lightingTargets): its name (debug label) and
+// internal format, at the render size.
+struct MethodTarget {
+    std::string name;
+    GLenum format = GL_RGBA32F;
+};
+
 struct GlintMethod {
     std::string id;           // command-line name, e.g. "deliot2023"
     std::string title;        // display name
@@ -74,10 +81,12 @@ struct GlintMethod {
     // Optional: the method's passes after the lighting pass (built with a current context from the shader root;
     // throws gl::ShaderError like any program build).
     std::function<MethodPassList(const std::filesystem::path& shaderRoot)> createPasses;
-    // The lighting pass writes the method's glint radiance and its directional occlusion to separate targets
-    // (lighting.frag, GLINT_POST_PASS; MethodPassFrame::glintEnvironment / glintLights) instead of adding them to
-    // the HDR radiance: its passes (Wang et al. 2020, Sec. 4.4) blur and add them.
-    bool glintPostPass = false;
+    // Targets the lighting pass writes for the method besides the radiance, at locations 2.. in this order, which
+    // its passes read (MethodPassFrame::lightingTargets). The method's shader then declares those outputs and the
+    // hooks of shaders/glints/README.md ("Lighting targets"; the lighting program is compiled with
+    // GLINT_METHOD_TARGETS): wang2020 keeps its glint radiance and directional occlusion out of the radiance so that
+    // its Sec. 4.4 passes can blur them and add them. At most 6 (8 draw buffers).
+    std::vector<MethodTarget> lightingTargets;
     // The method draws glints from the environment (its shader defines GLINT_ENVIRONMENT; Kneiphof & Klein 2025):
     // the renderer builds the environment's radiance levels for it (environment/environment_glints.h).
     bool environmentGlints = false;

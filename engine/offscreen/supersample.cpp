@@ -24,7 +24,7 @@ std::vector<float> boxDownsample(const std::vector<float>& rgba, int width, int 
 
 RenderResult supersampledRender(const RenderRequest& request,
                                 const std::function<RenderResult(const RenderRequest&)>& renderOnce) {
-    const int factor = int(request.settings.common_("ssaa.factor"));
+    const int factor = int(request.settings.value(param::ssaa_factor));
     RenderRequest big = request;
     big.width = request.width * factor;
     big.height = request.height * factor;
@@ -38,8 +38,8 @@ RenderResult supersampledRender(const RenderRequest& request,
     result.hdr = boxDownsample(result.hdr, request.width, request.height, factor);
     result.width = request.width;
     result.height = request.height;
-    const float exposure = std::exp2(request.settings.common_("exposure"));
-    const auto curve = ToneCurve(int(request.settings.common_("tonemap")));
+    const float exposure = std::exp2(request.settings.value(param::exposure));
+    const auto curve = ToneCurve(int(request.settings.value(param::tonemap)));
     result.display.assign(size_t(request.width) * request.height * 4, 255);
     for (size_t i = 0; i < size_t(request.width) * request.height; ++i) {
         glm::vec3 c = linearToSrgb(applyToneCurve(curve, glm::vec3(result.hdr[i * 4], result.hdr[i * 4 + 1],

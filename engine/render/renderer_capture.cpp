@@ -5,7 +5,8 @@
 
 namespace glimmer {
 
-RendererCapture::RendererCapture(std::filesystem::path shaderRoot) : shaderRoot_(std::move(shaderRoot)) {}
+RendererCapture::RendererCapture(std::filesystem::path shaderRoot, Environment* environment)
+    : shaderRoot_(std::move(shaderRoot)), environment_(environment) {}
 RendererCapture::~RendererCapture() = default;
 
 std::vector<std::vector<float>> RendererCapture::renderHdr(const Scene& scene, const std::vector<Camera>& cameras,
@@ -15,12 +16,12 @@ std::vector<std::vector<float>> RendererCapture::renderHdr(const Scene& scene, c
         // probes would be a second, different local-reflection scheme inside the regular-sampling comparison.
         RenderSettings settings;
         settings.apply("probes.enabled=0");
-        renderer_ = std::make_unique<Renderer>(shaderRoot_, settings);
+        renderer_ = std::make_unique<Renderer>(shaderRoot_, settings, FrameKind::Full, environment_);
     }
     GpuScene gpuScene(scene);
     std::vector<std::vector<float>> images;
     for (const Camera& camera : cameras) {
-        renderer_->render(scene, gpuScene, camera, size, size);
+        renderer_->renderView(scene, gpuScene, camera, size, size);
         images.push_back(renderer_->readHdr());
     }
     return images;

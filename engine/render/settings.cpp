@@ -134,9 +134,9 @@ static const CommonParam* findCommon(const std::string& name) {
     return nullptr;
 }
 
-float RenderSettings::common_(const std::string& name) const {
-    const CommonParam* p = findCommon(name);
-    if (!p) throw Error("internal: unknown common parameter " + name);
+float RenderSettings::value(CommonParamKey key) const {
+    const CommonParam* p = findCommon(key.name);
+    if (!p) throw Error(std::string("internal: unknown common parameter ") + key.name);
     return paramOr(common, p->spec);
 }
 
@@ -199,28 +199,28 @@ void RenderSettings::apply(const std::string& assignment) {
 
 void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
     for (Material& m : scene.materials) {
-        if (settings.isSet("material.alpha")) m.alpha = settings.common_("material.alpha");
-        if (settings.isSet("material.metallic")) m.metallic = settings.common_("material.metallic");
-        if (settings.isSet("material.ndf")) m.ndf = static_cast<NdfType>(int(settings.common_("material.ndf")));
-        if (settings.isSet("material.glinty")) m.glinty = settings.common_("material.glinty") > 0.5f;
-        if (settings.isSet("material.density_scale"))
-            m.glintDensityScale = settings.common_("material.density_scale");
-        if (settings.isSet("material.glint_density")) m.glint.density = settings.common_("material.glint_density");
-        if (settings.isSet("material.glint_angular_size"))
-            m.glint.angularSize = settings.common_("material.glint_angular_size");
-        if (settings.isSet("material.glint_anisotropy")) m.glint.anisotropy = settings.common_("material.glint_anisotropy");
-        if (settings.isSet("material.glint_color_variation"))
-            m.glint.colorVariation = settings.common_("material.glint_color_variation");
-        if (settings.isSet("material.clearcoat")) m.clearcoat = settings.common_("material.clearcoat");
-        if (settings.isSet("material.clearcoat_roughness"))
-            m.clearcoatRoughness = settings.common_("material.clearcoat_roughness");
+        if (settings.isSet(param::material_alpha)) m.alpha = settings.value(param::material_alpha);
+        if (settings.isSet(param::material_metallic)) m.metallic = settings.value(param::material_metallic);
+        if (settings.isSet(param::material_ndf)) m.ndf = static_cast<NdfType>(int(settings.value(param::material_ndf)));
+        if (settings.isSet(param::material_glinty)) m.glinty = settings.value(param::material_glinty) > 0.5f;
+        if (settings.isSet(param::material_density_scale))
+            m.glintDensityScale = settings.value(param::material_density_scale);
+        if (settings.isSet(param::material_glint_density)) m.glint.density = settings.value(param::material_glint_density);
+        if (settings.isSet(param::material_glint_angular_size))
+            m.glint.angularSize = settings.value(param::material_glint_angular_size);
+        if (settings.isSet(param::material_glint_anisotropy)) m.glint.anisotropy = settings.value(param::material_glint_anisotropy);
+        if (settings.isSet(param::material_glint_color_variation))
+            m.glint.colorVariation = settings.value(param::material_glint_color_variation);
+        if (settings.isSet(param::material_clearcoat)) m.clearcoat = settings.value(param::material_clearcoat);
+        if (settings.isSet(param::material_clearcoat_roughness))
+            m.clearcoatRoughness = settings.value(param::material_clearcoat_roughness);
     }
-    float scale = settings.common_("light.intensity");
-    const float areaSize = settings.common_("light.area_size"), areaIntensity = settings.common_("light.area_intensity");
+    float scale = settings.value(param::light_intensity);
+    const float areaSize = settings.value(param::light_area_size), areaIntensity = settings.value(param::light_area_intensity);
     for (Light& light : scene.lights) {
         light.intensity *= scale;
-        if (light.type == LightType::Directional && settings.isSet("light.sun_diameter"))
-            light.angularDiameter = glm::radians(settings.common_("light.sun_diameter"));
+        if (light.type == LightType::Directional && settings.isSet(param::light_sun_diameter))
+            light.angularDiameter = glm::radians(settings.value(param::light_sun_diameter));
         if (light.isArea()) {
             light.intensity *= areaIntensity;
             light.width *= areaSize;
@@ -228,7 +228,7 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
             light.radius *= areaSize;
         }
     }
-    int wanted = int(settings.common_("light.count"));
+    int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
         Light first = scene.lights.front();

@@ -18,6 +18,76 @@ struct CommonParam {
 };
 const std::vector<CommonParam>& commonParams();
 
+// A common parameter named in code: param::exposure, param::shadow_enabled... A misspelt name is a compile error,
+// and a test (RenderSettings.EveryKeyNamesACommonParameter) checks that each key names an entry of commonParams().
+struct CommonParamKey {
+    const char* name;
+};
+namespace param {
+inline constexpr CommonParamKey exposure{"exposure"};
+inline constexpr CommonParamKey texture_anisotropy{"texture_anisotropy"};
+inline constexpr CommonParamKey ambient{"ambient"};
+inline constexpr CommonParamKey light_intensity{"light.intensity"};
+inline constexpr CommonParamKey light_count{"light.count"};
+inline constexpr CommonParamKey light_sun_diameter{"light.sun_diameter"};
+inline constexpr CommonParamKey light_area_size{"light.area_size"};
+inline constexpr CommonParamKey light_area_intensity{"light.area_intensity"};
+inline constexpr CommonParamKey material_alpha{"material.alpha"};
+inline constexpr CommonParamKey material_metallic{"material.metallic"};
+inline constexpr CommonParamKey material_ndf{"material.ndf"};
+inline constexpr CommonParamKey material_glinty{"material.glinty"};
+inline constexpr CommonParamKey material_density_scale{"material.density_scale"};
+inline constexpr CommonParamKey material_glint_density{"material.glint_density"};
+inline constexpr CommonParamKey material_glint_angular_size{"material.glint_angular_size"};
+inline constexpr CommonParamKey material_glint_anisotropy{"material.glint_anisotropy"};
+inline constexpr CommonParamKey material_glint_color_variation{"material.glint_color_variation"};
+inline constexpr CommonParamKey material_clearcoat{"material.clearcoat"};
+inline constexpr CommonParamKey material_clearcoat_roughness{"material.clearcoat_roughness"};
+inline constexpr CommonParamKey env_intensity{"env.intensity"};
+inline constexpr CommonParamKey env_rotation{"env.rotation"};
+inline constexpr CommonParamKey aa{"aa"};
+inline constexpr CommonParamKey ssaa_factor{"ssaa.factor"};
+inline constexpr CommonParamKey taa_feedback{"taa.feedback"};
+inline constexpr CommonParamKey taa_glint_history{"taa.glint_history"};
+inline constexpr CommonParamKey taa_stable_glints{"taa.stable_glints"};
+inline constexpr CommonParamKey lighting_split_glinty{"lighting.split_glinty"};
+inline constexpr CommonParamKey lod_pixel_error{"lod.pixel_error"};
+inline constexpr CommonParamKey taa_upsample{"taa.upsample"};
+inline constexpr CommonParamKey taa_glint_feedback{"taa.glint_feedback"};
+inline constexpr CommonParamKey bloom_strength{"bloom.strength"};
+inline constexpr CommonParamKey bloom_radius{"bloom.radius"};
+inline constexpr CommonParamKey exposure_auto{"exposure.auto"};
+inline constexpr CommonParamKey tonemap{"tonemap"};
+inline constexpr CommonParamKey probes_enabled{"probes.enabled"};
+inline constexpr CommonParamKey probes_face_size{"probes.face_size"};
+inline constexpr CommonParamKey probes_max{"probes.max"};
+inline constexpr CommonParamKey ao_enabled{"ao.enabled"};
+inline constexpr CommonParamKey ao_screen{"ao.screen"};
+inline constexpr CommonParamKey ao_sky{"ao.sky"};
+inline constexpr CommonParamKey ao_radius{"ao.radius"};
+inline constexpr CommonParamKey ao_power{"ao.power"};
+inline constexpr CommonParamKey ao_slices{"ao.slices"};
+inline constexpr CommonParamKey ao_steps{"ao.steps"};
+inline constexpr CommonParamKey ao_falloff{"ao.falloff"};
+inline constexpr CommonParamKey ao_denoise{"ao.denoise"};
+inline constexpr CommonParamKey ao_half_res{"ao.half_res"};
+inline constexpr CommonParamKey ao_multibounce{"ao.multibounce"};
+inline constexpr CommonParamKey ao_sky_cell{"ao.sky_cell"};
+inline constexpr CommonParamKey ao_sky_rays{"ao.sky_rays"};
+inline constexpr CommonParamKey shadow_enabled{"shadow.enabled"};
+inline constexpr CommonParamKey shadow_map_size{"shadow.map_size"};
+inline constexpr CommonParamKey shadow_cascades{"shadow.cascades"};
+inline constexpr CommonParamKey shadow_filter_radius{"shadow.filter_radius"};
+inline constexpr CommonParamKey shadow_bias{"shadow.bias"};
+inline constexpr CommonParamKey shadow_normal_bias{"shadow.normal_bias"};
+inline constexpr CommonParamKey shadow_slope_bias{"shadow.slope_bias"};
+inline constexpr CommonParamKey shadow_distance{"shadow.distance"};
+inline constexpr CommonParamKey shadow_point_map_size{"shadow.point_map_size"};
+inline constexpr CommonParamKey shadow_half_res{"shadow.half_res"};
+inline constexpr CommonParamKey shadow_cache{"shadow.cache"};
+inline constexpr CommonParamKey kAll[] = {exposure, texture_anisotropy, ambient, light_intensity, light_count, light_sun_diameter, light_area_size, light_area_intensity, material_alpha, material_metallic, material_ndf, material_glinty, material_density_scale, material_glint_density, material_glint_angular_size, material_glint_anisotropy, material_glint_color_variation, material_clearcoat, material_clearcoat_roughness, env_intensity, env_rotation, aa, ssaa_factor, taa_feedback, taa_glint_history, taa_stable_glints, lighting_split_glinty, lod_pixel_error, taa_upsample, taa_glint_feedback, bloom_strength, bloom_radius, exposure_auto, tonemap, probes_enabled, probes_face_size, probes_max, ao_enabled, ao_screen, ao_sky, ao_radius, ao_power, ao_slices, ao_steps, ao_falloff, ao_denoise, ao_half_res, ao_multibounce, ao_sky_cell, ao_sky_rays, shadow_enabled, shadow_map_size, shadow_cascades, shadow_filter_radius, shadow_bias, shadow_normal_bias, shadow_slope_bias, shadow_distance, shadow_point_map_size, shadow_half_res, shadow_cache};
+}  // namespace param
+
 struct RenderSettings {
     std::string method = "smooth";
     ParamValues common;                         // keys of commonParams()
@@ -26,8 +96,8 @@ struct RenderSettings {
     std::string ibl = "prefiltered";            // environment-integration mode (environment/ibl/ibl_modes.h)
     std::map<std::string, ParamValues> iblValues;  // mode id -> its parameter values (--set ibl.<name>=V)
 
-    float common_(const std::string& name) const;  // value or default of a common parameter
-    bool isSet(const std::string& name) const { return common.count(name) != 0; }
+    float value(CommonParamKey key) const;  // value or default of a common parameter
+    bool isSet(CommonParamKey key) const { return common.count(key.name) != 0; }
     const ParamValues& methodValues(const std::string& id) const;
     const ParamValues& iblModeValues(const std::string& id) const;
 

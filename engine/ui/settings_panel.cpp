@@ -177,8 +177,8 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
         for (const CommonParam& p : commonParams()) {
             if (sectionOfPrefix(prefixOf(p.spec.name)) != group || panelHidesParameter(p.spec.name)) continue;
-            bool fromScene = p.sceneDefault && !settings.isSet(p.spec.name);
-            float value = settings.common_(p.spec.name);
+            bool fromScene = p.sceneDefault && !settings.isSet({p.spec.name.c_str()});
+            float value = settings.value({p.spec.name.c_str()});
             Edit edit = ui.slider(p.spec.name, p.spec, value, fromScene ? "scene" : nullptr);
             if (edit == Edit::Changed) settings.common[p.spec.name] = value;
             if (edit == Edit::Reset) settings.common.erase(p.spec.name);

@@ -9,11 +9,11 @@
 #define BINDING_METHOD_PARAMS 3      // uniform: the glint method's shared parameters (PS_<NAME>; P_<NAME> outside lighting)
 #define BINDING_MATERIAL_METHOD_PARAMS 3  // storage (not the uniform 3 above): the method's parameters per material (P_<NAME> in lighting)
 #define BINDING_EXPOSURE_HISTOGRAM 4 // storage: log2-luminance histogram (image/exposure_common.glsl)
-#define BINDING_SHADOWS 4            // uniform ShadowBlock (common/shadows.glsl; C++ render/shadows/shadow_maps.cpp); storage 4 is the histogram
+#define BINDING_SHADOWS 4            // uniform ShadowBlock (shadows/shadows.glsl; C++ render/shadows/shadow_maps.cpp); storage 4 is the histogram
 #define BINDING_IBL_PARAMS 5         // uniform: the IBL mode's parameters (IBL_<NAME>)
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
-#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (common/ibl.glsl; C++ ProbeUniforms, render/probes/reflection_probes.h)
-#define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (common/ibl.glsl)
+#define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (environment/prefiltered_lookup.glsl; C++ ProbeUniforms, render/probes/reflection_probes.h)
+#define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (environment/prefiltered_lookup.glsl)
 #define BINDING_ENV_GLINTS 7         // storage (not the uniform 7 above): environment glint levels (environment/glint_levels.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15

@@ -1,6 +1,8 @@
 // Deferred lighting: one full-screen pass reading the G-buffer. Position is rebuilt from depth.
 // Cook-Torrance (common/brdf.glsl) with D from the selected glint method on glinty materials, Lambert diffuse,
 // metalness workflow (F0 = mix(0.04, base colour, metallic)). Output: linear HDR radiance, never NaN/Inf.
+// main() reads the pixel's surface, then adds the environment term, the clear coat's environment lobe and the
+// lights, and writes the radiance or the debug view; each step is one function below.
 #include "common/bindings.glsl"
 #define GLIMMER_LIGHTING_PASS 1   // lets method files read lighting-pass data (u_materials) that probes lack
 #include "common/frame.glsl"
@@ -17,17 +19,13 @@
 #include "shadows/shadows.glsl"
 #endif
 
-#ifdef GLINT_POST_PASS
-// Methods with a screen-space glint post pass (GlintMethod::glintPostPass; Wang et al. 2020 Sec. 4.4): the light
-// loop and the IBL mode put glint radiance here instead of into o_color; the method's passes blur the occlusion, multiply,
-// blur the glints and add them (shaders/glints/wang2020/ (wang2020_glint_*.frag)). The IBL mode sets the environment glint (before occlusion) and
-// its visibility along the mirror direction.
-vec3 g_postEnvironmentGlint = vec3(0.0);
-float g_postVisibility = 1.0;
-layout(location = 1) out vec4 o_glintEnvironment;  // rgb: environment glints, a: visibility (glinty pixels)
-layout(location = 2) out vec4 o_glintLights;       // rgb: light glints, a: 1 on glinty pixels (occlusion-blur mask)
-#endif
+vec3 finiteOrZero(vec3 c) {
+    bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
+    return any(bad) ? vec3(0.0) : c;
+}
 
+// A method with lighting targets of its own (GLINT_METHOD_TARGETS; shaders/glints/README.md, "Lighting targets")
+// declares them at locations 2.. and the hooks glintTakeLightGlint, glintScaleTargets and glintWriteTargets.
 #include GLINT_METHOD_FILE
 #include IBL_MODE_FILE
 
@@ -45,7 +43,7 @@ in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
 // The part of o_color that is the lights' specular on glinty materials: the TAA resolve keeps it out of its
 // neighbourhood clipping (shaders/image/taa_resolve.frag). Written only where TAA attaches a target.
-layout(location = 3) out vec4 o_glintPart;
+layout(location = 1) out vec4 o_glintPart;
 
 // TAA with taa.stable_glints: the point of the tangent plane through `anchor` (normal n) seen through the screen
 // position `screen` (pixels) of this frame. Falls back to `anchor` for rays almost parallel to the plane.
@@ -110,58 +108,48 @@ vec3 areaGlintFactor(GlintPixel glint, GlintSurface s, vec3 h, vec3 wi, vec3 wo)
 #endif
 }
 
-vec3 finiteOrZero(vec3 c) {
-    bvec3 bad = bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z));
-    return any(bad) ? vec3(0.0) : c;
-}
+// The pixel as the G-buffer holds it (layout in frame/gbuffer.frag), with what the shading needs of its material.
+struct PixelSurface {
+    GlintSurface s;
+    bool glinty;
+    vec3 gbufferPosition;   // at the G-buffer's own (possibly jittered) pixel centre
+    vec3 position;          // where the pixel is shaded (moved for glints by TAA's unjittering)
+    vec3 baseColor;
+    float metallic;
+    int materialId;
+};
 
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(g_depth, pixel, 0).r;
-    int view = u_viewport.w;
-    if (depth <= 0.0) {   // reversed-Z clear value: nothing was drawn here
-        // The environment's radiance along the view ray (through the near plane, depth 1), else the sky colour.
-        vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
-                                : u_skyColor.rgb;
-        o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
-        o_glintPart = vec4(0.0);
-#ifdef GLINT_POST_PASS
-        o_glintEnvironment = vec4(0.0);
-        o_glintLights = vec4(0.0);
-#endif
-        return;
-    }
+PixelSurface readPixelSurface(ivec2 pixel, float depth) {
     vec4 uvDuvdx = texelFetch(g_uvDuvdx, pixel, 0);
     vec4 duvdyMaterial = texelFetch(g_duvdyMaterial, pixel, 0);
     vec4 normalAlpha = texelFetch(g_normalAlpha, pixel, 0);
     vec4 tangentMetallic = texelFetch(g_tangentMetallic, pixel, 0);
     vec4 baseColorMask = texelFetch(g_baseColorMask, pixel, 0);
 
-    int materialId = int(duvdyMaterial.z + 0.5);
-    GpuMaterial material = u_materials[materialId];
-    g_glintMaterial = materialId;   // the method's P_<NAME> read this material's parameters
-    GlintSurface s;
-    s.uv = uvDuvdx.xy;
-    s.duvdx = uvDuvdx.zw;
-    s.duvdy = duvdyMaterial.xy;
-    s.alpha = normalAlpha.w;
-    s.ndf = int(material.alphaMetallicNdfGlinty.z + 0.5);
-    s.densityScale = material.densityCutoff.x * baseColorMask.a;
-    s.materialId = materialId;
-    s.pixel = pixel;
-    s.n = normalize(normalAlpha.xyz);
-    s.t = normalize(tangentMetallic.xyz - s.n * dot(s.n, tangentMetallic.xyz));
-    s.b = duvdyMaterial.w * cross(s.n, s.t);
+    PixelSurface p;
+    p.materialId = int(duvdyMaterial.z + 0.5);
+    GpuMaterial material = u_materials[p.materialId];
+    g_glintMaterial = p.materialId;   // the method's P_<NAME> read this material's parameters
+    p.s.uv = uvDuvdx.xy;
+    p.s.duvdx = uvDuvdx.zw;
+    p.s.duvdy = duvdyMaterial.xy;
+    p.s.alpha = normalAlpha.w;
+    p.s.ndf = int(material.alphaMetallicNdfGlinty.z + 0.5);
+    p.s.densityScale = material.densityCutoff.x * baseColorMask.a;
+    p.s.materialId = p.materialId;
+    p.s.pixel = pixel;
+    p.s.n = normalize(normalAlpha.xyz);
+    p.s.t = normalize(tangentMetallic.xyz - p.s.n * dot(p.s.n, tangentMetallic.xyz));
+    p.s.b = duvdyMaterial.w * cross(p.s.n, p.s.t);
 #ifdef NON_GLINTY_PIXELS
     // The pixels lighting_class.frag did not mark glinty (render/frame/lighting_pass.h): the compiler drops the
     // method's code, and every other term is this shader's own.
-    const bool glinty = false;
+    p.glinty = false;
 #else
-    bool glinty = material.alphaMetallicNdfGlinty.w > 0.5;
+    p.glinty = material.alphaMetallicNdfGlinty.w > 0.5;
 #endif
-
-    const vec3 gbufferPosition = worldPosition(pixel, depth);
-    vec3 position = gbufferPosition;
+    p.gbufferPosition = worldPosition(pixel, depth);
+    p.position = p.gbufferPosition;
     // TAA jitters the projection by u_jitter.xy pixels. Glint methods filter their NDF over the pixel footprint
     // (duv/dx, duv/dy; shaders/glints/README.md), and that footprint must be the same in every frame of a still
     // camera: averaged over 16 jittered footprints and view directions, each sparkle would be supersampled a
@@ -169,102 +157,82 @@ void main() {
     // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
     // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
     // geometric edges of glinty surfaces are still anti-aliased.
-    if (glinty && u_jitter.z > 0.5) unjitterGlintFootprint(s, position);
-    s.position = position;
-    vec3 toEye = normalize(u_cameraPosition.xyz - position);
-    mat3 worldToShading = transpose(mat3(s.t, s.b, s.n));
-    vec3 wo = worldToShading * toEye;
-    vec3 baseColor = baseColorMask.rgb;
-    float metallic = tangentMetallic.w;
-    vec3 f0 = mix(vec3(0.04), baseColor, metallic);
-    vec3 diffuseAlbedo = (1.0 - metallic) * baseColor;
+    if (p.glinty && u_jitter.z > 0.5) unjitterGlintFootprint(p.s, p.position);
+    p.s.position = p.position;
+    p.baseColor = baseColorMask.rgb;
+    p.metallic = tangentMetallic.w;
+    return p;
+}
 
-    // KHR_materials_clearcoat (common/clearcoat.glsl): the coat's own lobe goes to coatRadiance; the base radiance
-    // (all of it, the method's glints included) is scaled by 1 - weight at the end. Uncoated pixels (weight 0)
-    // skip both, so their radiance is the uncoated shader's bit for bit.
-    vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
-    Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
-    vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
-    bool coated = coat.weight > 0.0;
-    vec3 coatRadiance = vec3(0.0);
-
-    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
-    // non-glinty variant never reads it (its debug views are not split off: render/frame/lighting_pass.h).
-#ifdef NON_GLINTY_PIXELS
-    GlintPixel glint;
-#else
-    GlintPixel glint = glintSetup(s);
-#endif
-
-    // Environment lighting by the selected IBL mode (shaders/environment/ibl/README.md), or the constant ambient when the
-    // environment is off (--env none).
-    // Ambient occlusion darkens this term only, never the lights (docs/ambient_occlusion.md).
-    // At ao.half_res the factor is interpolated from every second pixel (common/plane_aware_upsample.glsl); the
-    // taps are shared with the shadow mask when both run at half resolution.
-    vec4 occlusion;
+// Ambient occlusion of the environment term (docs/ambient_occlusion.md): rgb the factor, a the visibility. At
+// ao.half_res the factor is interpolated from every second pixel (common/plane_aware_upsample.glsl); the taps are
+// shared with the shadow mask when both run at half resolution (`maskTaps`, valid when `maskTapsValid`).
+vec4 ambientOcclusion(PixelSurface p, UpsampleTaps maskTaps, bool maskTapsValid) {
     ivec2 aoSize = textureSize(u_ambientOcclusion, 0);
     int aoStep = aoSize.x >= u_viewport.x ? 1 : 2;   // AmbientOcclusion::step(): a halved target is ceil(w / 2) wide
+    if (aoSize == ivec2(1)) return texelFetch(u_ambientOcclusion, ivec2(0), 0);   // white: AO off
+    if (aoStep == 1) return texelFetch(u_ambientOcclusion, p.s.pixel, 0);
     UpsampleTaps aoTaps;
+    bool sharedTaps = false;
 #ifdef SHADOWS
-    UpsampleTaps maskTaps;   // at the G-buffer's own position, as the mask's samples
-    if (u_shadowMask.x != 1)
-        maskTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, u_shadowMask.x,
-                                  shadowMaskLastTexel());
+    sharedTaps = maskTapsValid && u_shadowMask.x == aoStep;
+    if (sharedTaps) aoTaps = maskTaps;
 #endif
-    if (aoSize == ivec2(1)) {
-        occlusion = texelFetch(u_ambientOcclusion, ivec2(0), 0);   // white: AO off
-    } else if (aoStep == 1) {
-        occlusion = texelFetch(u_ambientOcclusion, pixel, 0);
-    } else {
-        bool sharedTaps = false;
-#ifdef SHADOWS
-        sharedTaps = u_shadowMask.x == aoStep;
-        if (sharedTaps) aoTaps = maskTaps;
-#endif
-        if (!sharedTaps)
-            aoTaps = planeAwareTaps(pixel, gbufferPosition, s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
-        occlusion = vec4(0.0);
-        for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
-        occlusion /= aoTaps.total;
+    if (!sharedTaps)
+        aoTaps = planeAwareTaps(p.s.pixel, p.gbufferPosition, p.s.n, g_depth, u_viewport.xy, aoStep, aoSize - 1);
+    vec4 occlusion = vec4(0.0);
+    for (int k = 0; k < 4; ++k) occlusion += aoTaps.weight[k] * texelFetch(u_ambientOcclusion, aoTaps.texel[k], 0);
+    return occlusion / aoTaps.total;
+}
+
+// The clear coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror direction,
+// from the prefiltered map and the reflection probes where the frame binds them (count 0 otherwise); GGX table with
+// F0 = 1 (the Fresnel is in the weight). Without an environment the constant ambient is reflected with the lobe's
+// albedo taken as 1.
+vec3 clearcoatEnvironment(Clearcoat coat, vec3 position, vec3 toEye) {
+    vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
+    if (envEnabled()) {
+        vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
+        coatEnvironment = envPrefilteredAt(position, reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
     }
-    vec3 radiance = occlusion.rgb * (envEnabled()
-        ? iblRadiance(glint, s, wo, toEye, worldToShading, diffuseAlbedo, f0, glinty, u_sample.x)
-        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
-    vec3 environmentGlints = occlusion.rgb * g_environmentGlintPart;   // environment glints (the IBL mode's)
-    if (coated) {
-        // The coat's environment lobe in every IBL mode: split sum at the coat's roughness along its mirror
-        // direction, from the prefiltered map and the reflection probes where the frame binds them (count 0
-        // otherwise); GGX table with F0 = 1 (the Fresnel is in the weight). Without an environment the constant
-        // ambient is reflected with the lobe's albedo taken as 1.
-        vec3 coatEnvironment = u_skyColor.rgb * u_exposure.z;
-        if (envEnabled()) {
-            vec2 ab = envBrdf(clamp(coat.nDotV, 1e-4, 1.0), coat.alpha, NDF_GGX);
-            coatEnvironment = envPrefilteredAt(position, reflect(-toEye, coat.n), coat.alpha, NDF_GGX) * (ab.x + ab.y);
-        }
-        coatRadiance += occlusion.rgb * coat.weight * coatEnvironment;
-    }
-    float firstLightD = 0.0;
-    float firstLightVisibility = 0.0;
-    vec3 lightGlints = vec3(0.0);   // GLINT_POST_PASS: glinty specular of the lights, added after the blur
-    vec3 glintPart = environmentGlints;   // otherwise: the same term, left in o_color and also written to o_glintPart
+    return coatEnvironment;
+}
+
+// What the lights add besides the radiance: the parts other targets and the debug views need.
+struct LightSum {
+    vec3 glintPart;         // the lights' specular on glinty pixels (inside radiance; TAA's glint part)
+    float firstLightD;      // the glint AOV: D of light 0
+    float firstLightVisibility;
+};
+
+// Adds every light's diffuse and specular to `radiance` (the base layer) and its coat lobe to `coatRadiance`.
+LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3 toEye, vec3 wo, vec3 diffuseAlbedo,
+                     vec3 f0, Clearcoat coat, UpsampleTaps maskTaps, inout vec3 radiance, inout vec3 coatRadiance) {
+    LightSum sum;
+    sum.glintPart = vec3(0.0);
+    sum.firstLightD = 0.0;
+    sum.firstLightVisibility = 0.0;
+    GlintSurface s = p.s;
+    bool coated = coat.weight > 0.0;
+    int view = u_viewport.w;
     int lightCount = int(u_exposure.y);
-    int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
 #ifdef SHADOWS
     vec4 maskVisibility[MAX_SHADOW_SLOTS / 4];
     // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
-    shadowMaskVisibility(pixel, maskTaps, maskVisibility);
+    shadowMaskVisibility(s.pixel, maskTaps, maskVisibility);
 #endif
+    int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
     // Punctual and directional lights. Area lights follow in a loop of their own: llvmpipe executes both sides of a
     // branch, so one loop would make every light pay for the LTC integrals.
     for (int i = 0; i < lightCount - areaLightCount; ++i) {
         vec3 towardLight, irradiance;
-        lightIncidence(u_lights[i], position, towardLight, irradiance);
+        lightIncidence(u_lights[i], p.position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
         // A coated pixel may see a light through its coat that its (normal-mapped) base faces away from.
         bool coatLit = coated && dot(coat.n, towardLight) > 0.0 && coat.nDotV > 0.0;
         if ((wi.z <= 0.0 || wo.z <= 0.0) && !coatLit) continue;
         // Shadows: the light's whole contribution, diffuse and (glint) specular, scales with its visibility
-        // (common/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
+        // (shadows/shadows.glsl); a fully shadowed light is skipped, except for the glint view's D.
 #ifdef SHADOWS
         // From the shadow mask (render/shadows/shadow_mask_pass.h: the maps are filtered there, at a quarter of the
         // pixels by default).
@@ -272,7 +240,7 @@ void main() {
 #else
         float visibility = 1.0;   // shadow.enabled=0 (render/frame/lighting_pass.h)
 #endif
-        if (i == 0) firstLightVisibility = visibility;
+        if (i == 0) sum.firstLightVisibility = visibility;
         if (visibility <= 0.0 && !(i == 0 && view == VIEW_GLINT)) continue;
         irradiance *= visibility;
         if (coatLit) coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance;
@@ -281,25 +249,23 @@ void main() {
         // The light's size for the glint methods (GlintLight): its solid angle and the integral of D(h) / (4 |l.h|)
         // over it, D(h) Omega / (4 (l.h)) for a light this small (Kneiphof & Klein 2024, Sec. 4.3).
         g_glintLight.area = false;
-        g_glintLight.solidAngle = punctualSolidAngle(u_lights[i], position);
+        g_glintLight.solidAngle = punctualSolidAngle(u_lights[i], p.position);
         g_glintLight.ndfIntegral = D_smooth(h, s.alpha, s.ndf) * g_glintLight.solidAngle / (4.0 * max(dot(wi, h), 1e-4));
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
-        vec3 colorD = glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
+        vec3 colorD = p.glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
         float D = dot(colorD, vec3(1.0 / 3.0));
         vec3 specular = cookTorranceSpecular(1.0, wi, wo, h, s.alpha, s.ndf, f0) * colorD;
 #else
-        float D = glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
+        float D = p.glinty ? glintD(glint, s, h, wi, wo) : D_smooth(h, s.alpha, s.ndf);
         vec3 specular = cookTorranceSpecular(D, wi, wo, h, s.alpha, s.ndf, f0);
 #endif
-        if (i == 0) firstLightD = D;
-#ifdef GLINT_POST_PASS
-        if (glinty) {
-            lightGlints += specular * irradiance * wi.z;
-            specular = vec3(0.0);
-        }
+        if (i == 0) sum.firstLightD = D;
+#ifdef GLINT_METHOD_TARGETS
+        // The method keeps its light glints in its own target (its passes add them later).
+        if (p.glinty && glintTakeLightGlint(specular * irradiance * wi.z)) specular = vec3(0.0);
 #else
-        if (glinty) glintPart += specular * irradiance * wi.z;
+        if (p.glinty) sum.glintPart += specular * irradiance * wi.z;
 #endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
     }
@@ -312,14 +278,14 @@ void main() {
         LtcPixel ltc = ltcSetup(s.n, toEye, s.alpha, s.ndf);   // once per pixel, shared by the area lights
         vec3 specularAlbedo = f0 * ltc.splitSum.x + ltc.splitSum.y;
         for (int i = lightCount - areaLightCount; i < lightCount; ++i) {
-            AreaLightGeometry g = areaLightGeometry(u_lights[i], position, ltc.toFrame);
+            AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
             if (!g.visible) continue;
 #ifdef SHADOWS
             float visibility = maskedLightVisibility(i, maskVisibility);
 #else
             float visibility = 1.0;
 #endif
-            if (i == 0) firstLightVisibility = visibility;
+            if (i == 0) sum.firstLightVisibility = visibility;
             if (visibility <= 0.0) continue;
             vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
             // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of the
@@ -331,7 +297,7 @@ void main() {
             float diffuse = g.sinSigma2 > 0.0 ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : integrals[0];
             float specularIntegral = integrals[1];
             vec3 specular = specularAlbedo * specularIntegral;
-            if (glinty && specularIntegral > 0.0) {
+            if (p.glinty && specularIntegral > 0.0) {
                 // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
                 // angular cell of deliot2023's grid and the NDF value of the fallback.
                 vec3 wi = worldToShading * g.towardCentre;
@@ -339,59 +305,130 @@ void main() {
                 g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral, g.shape,
                                           g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
                 specular *= areaGlintFactor(glint, s, h, wi, wo);
-#ifdef GLINT_POST_PASS
-                lightGlints += specular * L;
-                specular = vec3(0.0);
+#ifdef GLINT_METHOD_TARGETS
+                // The method keeps its light glints in its own target (its passes add them later).
+                if (glintTakeLightGlint(specular * L)) specular = vec3(0.0);
 #else
-                glintPart += specular * L;
+                sum.glintPart += specular * L;
 #endif
             }
             radiance += (diffuseAlbedo * diffuse + specular) * L;
             if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
                 // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
                 vec3 towardLight, irradiance;
-                lightIncidence(u_lights[i], position, towardLight, irradiance);
+                lightIncidence(u_lights[i], p.position, towardLight, irradiance);
                 coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
             }
         }
     }
+    return sum;
+}
 
+// --aov views (render/aov.h).
+vec4 debugView(int view, PixelSurface p, GlintPixel glint, vec3 radiance, LightSum lights, vec4 occlusion,
+               vec4 coatTexelView) {
+    GlintSurface s = p.s;
+    switch (view) {
+        case VIEW_ALBEDO: return vec4(p.baseColor, 1.0);
+        case VIEW_NORMAL: return vec4(s.n, 1.0);
+        case VIEW_DEPTH: return vec4(vec3(distance(p.position, u_cameraPosition.xyz)), 1.0);
+        case VIEW_UV: return vec4(s.uv, 0.0, 1.0);
+        case VIEW_DUVDX: return vec4(s.duvdx, 0.0, 1.0);
+        case VIEW_DUVDY: return vec4(s.duvdy, 0.0, 1.0);
+        case VIEW_GLINT: return vec4(vec3(lights.firstLightD), 1.0);
+        case VIEW_FOOTPRINT: return glintFootprintAOV(glint, s);
+        case VIEW_TANGENT: return vec4(s.t, 1.0);
+        case VIEW_ROUGHNESS_METALLIC: return vec4(s.alpha, p.metallic, float(p.materialId), 1.0);
+        case VIEW_EXTRA: return glintExtraAOV(glint, s);
+        case VIEW_AO: return vec4(vec3(occlusion.a), 1.0);
+        case VIEW_SHADOW: return vec4(vec3(lights.firstLightVisibility), 1.0);
+        case VIEW_CLEARCOAT: return coatTexelView;
+        default: return vec4(radiance, 1.0);
+    }
+}
+
+// A pixel where nothing was drawn (reversed-Z clear value): the environment's radiance along the view ray (through
+// the near plane, depth 1), else the sky colour.
+void writeBackground(ivec2 pixel, int view) {
+    vec3 sky = envEnabled() ? envBackground(normalize(worldPosition(pixel, 1.0) - u_cameraPosition.xyz))
+                            : u_skyColor.rgb;
+    o_color = vec4(view == VIEW_FINAL ? finiteOrZero(sky) : vec3(0.0), 0.0);
+    o_glintPart = vec4(0.0);
+#ifdef GLINT_METHOD_TARGETS
+    glintWriteTargets(false, false);
+#endif
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(g_depth, pixel, 0).r;
+    int view = u_viewport.w;
+    if (depth <= 0.0) {
+        writeBackground(pixel, view);
+        return;
+    }
+    PixelSurface p = readPixelSurface(pixel, depth);
+    vec3 toEye = normalize(u_cameraPosition.xyz - p.position);
+    mat3 worldToShading = transpose(mat3(p.s.t, p.s.b, p.s.n));
+    vec3 wo = worldToShading * toEye;
+    vec3 f0 = mix(vec3(0.04), p.baseColor, p.metallic);
+    vec3 diffuseAlbedo = (1.0 - p.metallic) * p.baseColor;
+
+    // KHR_materials_clearcoat (common/clearcoat.glsl): the coat's own lobe goes to coatRadiance; the base radiance
+    // (all of it, the method's glints included) is scaled by 1 - weight at the end. Uncoated pixels (weight 0)
+    // skip both, so their radiance is the uncoated shader's bit for bit.
+    vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
+    Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
+    vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
+    bool coated = coat.weight > 0.0;
+
+    // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
+    // non-glinty variant never reads it (its debug views are not split off: render/frame/lighting_pass.h).
+#ifdef NON_GLINTY_PIXELS
+    GlintPixel glint;
+#else
+    GlintPixel glint = glintSetup(p.s);
+#endif
+
+    // The shadow mask's interpolation taps, at the G-buffer's own position as the mask's samples.
+    UpsampleTaps maskTaps;
+    bool maskTapsValid = false;
+#ifdef SHADOWS
+    if (u_shadowMask.x != 1) {
+        maskTaps = planeAwareTaps(pixel, p.gbufferPosition, p.s.n, g_depth, u_viewport.xy, u_shadowMask.x,
+                                  shadowMaskLastTexel());
+        maskTapsValid = true;
+    }
+#endif
+    // Environment lighting by the selected IBL mode (shaders/environment/ibl/README.md), or the constant ambient
+    // when the environment is off (--env none). Ambient occlusion darkens this term only, never the lights.
+    vec4 occlusion = ambientOcclusion(p, maskTaps, maskTapsValid);
+    vec3 radiance = occlusion.rgb * (envEnabled()
+        ? iblRadiance(glint, p.s, wo, toEye, worldToShading, diffuseAlbedo, f0, p.glinty, u_sample.x)
+        : u_skyColor.rgb * u_exposure.z * diffuseAlbedo);
+    vec3 coatRadiance = vec3(0.0);
+    if (coated) coatRadiance += occlusion.rgb * coat.weight * clearcoatEnvironment(coat, p.position, toEye);
+
+    LightSum lights = shadeLights(p, glint, worldToShading, toEye, wo, diffuseAlbedo, f0, coat, maskTaps, radiance,
+                                  coatRadiance);
+    // The environment's glints (the IBL mode's, inside `radiance`: environment/ibl/prefiltered.glsl) join the
+    // lights' in the glint part.
+    vec3 glintPart = lights.glintPart + occlusion.rgb * g_environmentGlintPart;
     if (coated) {
         float baseShare = 1.0 - coat.weight;
         radiance = radiance * baseShare + coatRadiance;
         glintPart *= baseShare;
-        lightGlints *= baseShare;
-#ifdef GLINT_POST_PASS
-        g_postEnvironmentGlint *= baseShare;
+#ifdef GLINT_METHOD_TARGETS
+        glintScaleTargets(baseShare);
 #endif
     }
 
-    vec4 result;
-    switch (view) {
-        case VIEW_ALBEDO: result = vec4(baseColor, 1.0); break;
-        case VIEW_NORMAL: result = vec4(s.n, 1.0); break;
-        case VIEW_DEPTH: result = vec4(vec3(distance(position, u_cameraPosition.xyz)), 1.0); break;
-        case VIEW_UV: result = vec4(s.uv, 0.0, 1.0); break;
-        case VIEW_DUVDX: result = vec4(s.duvdx, 0.0, 1.0); break;
-        case VIEW_DUVDY: result = vec4(s.duvdy, 0.0, 1.0); break;
-        case VIEW_GLINT: result = vec4(vec3(firstLightD), 1.0); break;
-        case VIEW_FOOTPRINT: result = glintFootprintAOV(glint, s); break;
-        case VIEW_TANGENT: result = vec4(s.t, 1.0); break;
-        case VIEW_ROUGHNESS_METALLIC: result = vec4(s.alpha, metallic, float(materialId), 1.0); break;
-        case VIEW_EXTRA: result = glintExtraAOV(glint, s); break;
-        case VIEW_AO: result = vec4(vec3(occlusion.a), 1.0); break;
-        case VIEW_SHADOW: result = vec4(vec3(firstLightVisibility), 1.0); break;
-        case VIEW_CLEARCOAT: result = coatTexelView; break;
-        default: result = vec4(radiance, 1.0); break;
-    }
+    vec4 result = debugView(view, p, glint, radiance, lights, occlusion, coatTexelView);
     o_color = vec4(finiteOrZero(result.rgb), isnan(result.a) || isinf(result.a) ? 0.0 : result.a);
-    // Methods with a glint post pass add their (blurred) glints after this pass: TAA clips them with the rest.
+    // Methods with lighting targets add their (blurred) glints after this pass: TAA clips them with the rest.
     bool finiteResult = all(equal(o_color.rgb, result.rgb));
     o_glintPart = vec4(view == VIEW_FINAL && finiteResult ? finiteOrZero(glintPart) : vec3(0.0), 0.0);
-#ifdef GLINT_POST_PASS
-    bool postGlints = view == VIEW_FINAL && glinty;
-    o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
-                                    : vec4(0.0);
-    o_glintLights = postGlints ? vec4(finiteOrZero(lightGlints), 1.0) : vec4(0.0);
+#ifdef GLINT_METHOD_TARGETS
+    glintWriteTargets(p.glinty, view == VIEW_FINAL);
 #endif
 }

@@ -1,4 +1,4 @@
-// Shadow mask (render/shadows/shadow_mask_pass.h): lightVisibility (common/shadows.glsl) of the four shadowed lights
+// Shadow mask (render/shadows/shadow_mask_pass.h): lightVisibility (shadows/shadows.glsl) of the four shadowed lights
 // of mask layer u_layer (slots 4 x u_layer .. + 3) at one
 // G-buffer pixel per mask texel (every second pixel in x and y at shadow.half_res=1), with the same position,
 // normal and light direction as the lighting pass, so a sample pixel's visibility is what the lighting pass would

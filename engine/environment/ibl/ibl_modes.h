@@ -54,7 +54,7 @@ struct IblMode {
     // Methods the mode requires (empty: any); --ibl with another --method is a one-line usage error.
     std::vector<std::string> requiredMethods;
     std::function<std::unique_ptr<IblModeResources>()> createResources;
-    // The mode's shader reads the environment through the probe-aware lookups of common/ibl.glsl
+    // The mode's shader reads the environment through the probe-aware lookups of environment/prefiltered_lookup.glsl
     // (envLightingAt, envPrefilteredAt, envRadianceAt): the renderer captures and binds reflection probes for it.
     bool readsProbes = false;
 };

@@ -73,8 +73,8 @@ public:
         targets_->resize(frame.width, frame.height);
         program_.use();
         setKernel(program_, radiusOf(tapsOf(frame, "blur_occlusion")));
-        glBindTextureUnit(0, frame.glintEnvironment);
-        glBindTextureUnit(1, frame.glintLights);
+        glBindTextureUnit(0, frame.lightingTargets.at(0));   // wang2020Method()'s lightingTargets, in order
+        glBindTextureUnit(1, frame.lightingTargets.at(1));
         glBindVertexArray(frame.emptyVao);
         gl::fullscreenState(targets_->occlusionSumsFbo.id(), frame.width, frame.height).apply();
         glProgramUniform1i(program_.id(), 0, 0);   // u_pass 0: sums along x

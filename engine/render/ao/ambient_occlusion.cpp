@@ -9,19 +9,19 @@ namespace glimmer {
 
 AoSettings AoSettings::from(const RenderSettings& s) {
     AoSettings ao;
-    ao.enabled = s.common_("ao.enabled") > 0.5f;
-    ao.screen = s.common_("ao.screen") > 0.5f;
-    ao.sky = s.common_("ao.sky") > 0.5f;
-    ao.denoise = s.common_("ao.denoise") > 0.5f;
-    ao.multiBounce = s.common_("ao.multibounce") > 0.5f;
-    ao.halfRes = s.common_("ao.half_res") > 0.5f;
-    ao.radius = s.common_("ao.radius");
-    ao.power = s.common_("ao.power");
-    ao.falloff = s.common_("ao.falloff");
-    ao.slices = int(s.common_("ao.slices"));
-    ao.steps = int(s.common_("ao.steps"));
-    ao.bake.cellSize = s.common_("ao.sky_cell");
-    ao.bake.directions = 2 * int(s.common_("ao.sky_rays"));
+    ao.enabled = s.value(param::ao_enabled) > 0.5f;
+    ao.screen = s.value(param::ao_screen) > 0.5f;
+    ao.sky = s.value(param::ao_sky) > 0.5f;
+    ao.denoise = s.value(param::ao_denoise) > 0.5f;
+    ao.multiBounce = s.value(param::ao_multibounce) > 0.5f;
+    ao.halfRes = s.value(param::ao_half_res) > 0.5f;
+    ao.radius = s.value(param::ao_radius);
+    ao.power = s.value(param::ao_power);
+    ao.falloff = s.value(param::ao_falloff);
+    ao.slices = int(s.value(param::ao_slices));
+    ao.steps = int(s.value(param::ao_steps));
+    ao.bake.cellSize = s.value(param::ao_sky_cell);
+    ao.bake.directions = 2 * int(s.value(param::ao_sky_rays));
     return ao;
 }
 

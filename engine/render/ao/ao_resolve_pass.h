@@ -3,6 +3,7 @@
 // lighting pass applies to the environment / ambient term (AmbientOcclusion::occlusionTexture).
 #pragma once
 #include <filesystem>
+#include <memory>
 
 #include "render/ao/ambient_occlusion.h"
 #include "render/frame/pass.h"
@@ -11,15 +12,21 @@ namespace glimmer {
 
 class AoResolvePass : public Pass {
 public:
-    AoResolvePass(const std::filesystem::path& shaderRoot, const AmbientOcclusion& ao);
+    AoResolvePass(const std::filesystem::path& shaderRoot, std::shared_ptr<AmbientOcclusion> ao);
     const char* name() const override { return "ao_resolve"; }
+    PassResources resources() const override {
+        return {.reads = {FrameResource::GBuffer, FrameResource::Depth, FrameResource::AmbientOcclusionRaw},
+                .writes = {FrameResource::AmbientOcclusion}};
+    }
     std::vector<gl::Program*> programs() override { return {&program_}; }
-    bool runs(const FrameContext& frame) const override { return ao_.settings().enabled && !frame.blendSample; }
+    // Publishes what the lighting pass reads: the resolved factor, or 1 x 1 white with ao.enabled = 0.
+    void prepare(PrepareContext& context) override;
+    bool runs(const FrameContext& frame) const override { return ao_->settings().enabled && !frame.blendSample; }
     void execute(const FrameContext& frame) override;
 
 private:
     gl::Program program_;
-    const AmbientOcclusion& ao_;
+    std::shared_ptr<AmbientOcclusion> ao_;
 };
 
 }  // namespace glimmer

@@ -24,7 +24,9 @@ bool EmissivePass::runs(const FrameContext& frame) const {
 }
 
 void EmissivePass::execute(const FrameContext& frame) {
-    gl::PipelineState state = gl::fullscreenState(target_->framebuffer(frame.targets), frame.width, frame.height);
+    gl::PipelineState state = gl::fullscreenState(
+        target_->framebuffer(frame.resources.write(FrameResource::Hdr), frame.resources.read(FrameResource::Depth)),
+        frame.width, frame.height);
     state.depthTest = true;
     state.depthFunc = GL_GEQUAL;   // the G-buffer's own surface (same vertex shader) passes, hidden ones do not
     state.depthWrite = false;

@@ -14,6 +14,7 @@ class EmissivePass : public Pass {
 public:
     EmissivePass(const std::filesystem::path& shaderRoot, std::shared_ptr<ForwardTarget> target);
     const char* name() const override { return "emissive"; }
+    PassResources resources() const override { return {.reads = {FrameResource::Depth}, .writes = {FrameResource::Hdr}}; }
     // The program is built on the first frame that needs it: most scenes never do, and every build costs.
     std::vector<gl::Program*> programs() override;
     bool runs(const FrameContext& frame) const override;

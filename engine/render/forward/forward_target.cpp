@@ -5,32 +5,29 @@
 
 namespace glimmer {
 
-GLuint ForwardTarget::framebuffer(const FrameTargets& targets) {
-    if (!fbo_ || hdr_ != targets.hdrTexture() || depth_ != targets.depthTexture() || width_ != targets.width() ||
-        height_ != targets.height()) {
-        fbo_ = gl::createFramebuffer("forward", {targets.hdrTexture()}, targets.depthTexture());
-        hdr_ = targets.hdrTexture();
-        depth_ = targets.depthTexture();
-        width_ = targets.width();
-        height_ = targets.height();
-    }
-    return fbo_.id();
+GLuint ForwardTarget::framebuffer(const FrameImage& hdr, const FrameImage& depth) {
+    return framebuffer_.get("forward", {hdr.texture()}, depth.texture(), {hdr.serial, depth.serial});
 }
 
-void ForwardTarget::saveOpaque(const FrameTargets& targets) {
-    if (!saved_ || savedWidth_ != targets.width() || savedHeight_ != targets.height()) {
-        saved_ = gl::createTexture2D(GL_RGBA32F, targets.width(), targets.height());
-        savedWidth_ = targets.width();
-        savedHeight_ = targets.height();
+void ForwardTarget::saveOpaque(const FrameImage& hdr) {
+    if (!saved_ || savedWidth_ != hdr.width || savedHeight_ != hdr.height) {
+        saved_ = gl::createTexture2D(GL_RGBA32F, hdr.width, hdr.height);
+        savedWidth_ = hdr.width;
+        savedHeight_ = hdr.height;
     }
-    glCopyImageSubData(targets.hdrTexture(), GL_TEXTURE_2D, 0, 0, 0, 0, saved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       targets.width(), targets.height(), 1);
+    glCopyImageSubData(hdr.texture(), GL_TEXTURE_2D, 0, 0, 0, 0, saved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, hdr.width,
+                       hdr.height, 1);
 }
 
-void ForwardTarget::restoreOpaque(const FrameTargets& targets) const {
-    if (!saved_ || savedWidth_ != targets.width() || savedHeight_ != targets.height()) return;
-    glCopyImageSubData(saved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, targets.hdrTexture(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       targets.width(), targets.height(), 1);
+void ForwardTarget::restoreOpaque(const FrameImage& hdr) const {
+    if (!saved_ || savedWidth_ != hdr.width || savedHeight_ != hdr.height) return;
+    glCopyImageSubData(saved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, hdr.texture(), GL_TEXTURE_2D, 0, 0, 0, 0, hdr.width,
+                       hdr.height, 1);
+}
+
+FrameImage ForwardTarget::opaqueMean() const {
+    if (!saved_) return {};
+    return {.textures = {saved_.id()}, .width = savedWidth_, .height = savedHeight_};
 }
 
 bool forwardPassesRun(const FrameContext& frame) {
@@ -43,8 +40,13 @@ bool ForwardAccumulationPass::runs(const FrameContext& frame) const {
 }
 
 void ForwardAccumulationPass::execute(const FrameContext& frame) {
-    if (mode_ == Mode::Save) target_->saveOpaque(frame.targets);
-    else target_->restoreOpaque(frame.targets);
+    if (mode_ == Mode::Save) {
+        target_->saveOpaque(frame.resources.read(FrameResource::Hdr));
+        frame.resources.publish(FrameResource::OpaqueMean, target_->opaqueMean());
+    } else {
+        frame.resources.read(FrameResource::OpaqueMean);
+        target_->restoreOpaque(frame.resources.write(FrameResource::Hdr));
+    }
 }
 
 }  // namespace glimmer

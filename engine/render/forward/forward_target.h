@@ -13,18 +13,19 @@
 
 namespace glimmer {
 
+// The forward passes' shared state (one feature, several passes): their framebuffer over the frame's HDR radiance
+// and depth, and the saved opaque mean (FrameResource::OpaqueMean, owned here).
 class ForwardTarget {
 public:
-    // The framebuffer (HDR colour + G-buffer depth), rebuilt when the frame targets were reallocated.
-    GLuint framebuffer(const FrameTargets& targets);
+    // The framebuffer (HDR colour + G-buffer depth), rebuilt when either was reallocated.
+    GLuint framebuffer(const FrameImage& hdr, const FrameImage& depth);
     // Copies of the HDR target (the opaque mean) for accumulation.
-    void saveOpaque(const FrameTargets& targets);
-    void restoreOpaque(const FrameTargets& targets) const;
+    void saveOpaque(const FrameImage& hdr);
+    void restoreOpaque(const FrameImage& hdr) const;
+    FrameImage opaqueMean() const;
 
 private:
-    GLuint hdr_ = 0, depth_ = 0;
-    int width_ = 0, height_ = 0;
-    gl::Framebuffer fbo_;
+    gl::AttachedFramebuffer framebuffer_;
     gl::Texture saved_;
     int savedWidth_ = 0, savedHeight_ = 0;
 };
@@ -39,6 +40,10 @@ public:
     enum class Mode { Save, Restore };
     ForwardAccumulationPass(std::shared_ptr<ForwardTarget> target, Mode mode) : target_(std::move(target)), mode_(mode) {}
     const char* name() const override { return mode_ == Mode::Save ? "forward_save" : "forward_restore"; }
+    PassResources resources() const override {
+        if (mode_ == Mode::Save) return {.reads = {FrameResource::Hdr}, .writes = {FrameResource::OpaqueMean}};
+        return {.writes = {FrameResource::Hdr}, .readsPrevious = {FrameResource::OpaqueMean}};
+    }
     std::vector<gl::Program*> programs() override { return {}; }
     bool runs(const FrameContext& frame) const override;
     void execute(const FrameContext& frame) override;

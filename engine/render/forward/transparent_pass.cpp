@@ -24,7 +24,9 @@ bool TransparentPass::runs(const FrameContext& frame) const {
 }
 
 void TransparentPass::execute(const FrameContext& frame) {
-    gl::PipelineState state = gl::fullscreenState(target_->framebuffer(frame.targets), frame.width, frame.height);
+    gl::PipelineState state = gl::fullscreenState(
+        target_->framebuffer(frame.resources.write(FrameResource::Hdr), frame.resources.read(FrameResource::Depth)),
+        frame.width, frame.height);
     state.depthTest = true;
     state.depthFunc = GL_GREATER;   // reversed Z: in front of the opaque surface
     state.depthWrite = false;
@@ -32,7 +34,7 @@ void TransparentPass::execute(const FrameContext& frame) {
     state.blend = {true, -1, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE};
     state.apply();
     program().use();
-    frame.environment.bind(frame.settings.common_("env.intensity"), frame.settings.common_("env.rotation"));
+    frame.environment.bind(frame.settings.value(param::env_intensity), frame.settings.value(param::env_rotation));
     frame.gpuScene.drawBlendedBackToFront(frame.scene, frame.viewProjection, frame.camera.position);
 }
 

@@ -16,6 +16,7 @@ class TransparentPass : public Pass {
 public:
     TransparentPass(const std::filesystem::path& shaderRoot, std::shared_ptr<ForwardTarget> target);
     const char* name() const override { return "transparent"; }
+    PassResources resources() const override { return {.reads = {FrameResource::Depth}, .writes = {FrameResource::Hdr}}; }
     // The program is built on the first frame that needs it: most scenes never do, and every build costs.
     std::vector<gl::Program*> programs() override;
     bool runs(const FrameContext& frame) const override;

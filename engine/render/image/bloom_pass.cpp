@@ -18,7 +18,7 @@ BloomPass::BloomPass(const std::filesystem::path& shaderRoot)
 }
 
 bool BloomPass::wanted(const RenderSettings& settings) {
-    return settings.debugView == 0 && settings.common_("bloom.strength") > 0.0f;
+    return settings.debugView == 0 && settings.value(param::bloom_strength) > 0.0f;
 }
 
 void BloomPass::resize(int width, int height) {
@@ -44,10 +44,25 @@ void BloomPass::resize(int width, int height) {
     }
 }
 
+void BloomPass::prepare(PrepareContext& context) {
+    if (!wanted(context.settings)) {
+        context.resources.publish(FrameResource::Bloom, {});
+        return;
+    }
+    resize(context.view.postWidth, context.view.postHeight);
+    // The first level's size; the tone mapping divides the sum by the level count.
+    context.resources.publish(FrameResource::Bloom,
+                              levels_.empty() ? FrameImage{}
+                                              : FrameImage{.textures = {levels_[0].texture.id()},
+                                                           .width = levels_[0].width,
+                                                           .height = levels_[0].height,
+                                                           .levels = int(levels_.size())});
+}
+
 void BloomPass::execute(const FrameContext& frame) {
-    apply(frame.targets.postHdrTexture(), frame.targets.postWidth(), frame.targets.postHeight(),
-          frame.settings.common_("bloom.radius"),
-          frame.emptyVao);
+    frame.resources.write(FrameResource::Bloom);
+    apply(frame.resources.read(FrameResource::PostHdr).texture(), frame.postWidth, frame.postHeight,
+          frame.settings.value(param::bloom_radius), frame.emptyVao);
 }
 
 void BloomPass::apply(GLuint source, int width, int height, float radius, GLuint emptyVao) {

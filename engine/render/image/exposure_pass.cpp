@@ -18,16 +18,23 @@ ExposurePass::ExposurePass(const std::filesystem::path& shaderRoot)
 }
 
 bool ExposurePass::wanted(const RenderSettings& settings) {
-    return settings.debugView == 0 && settings.common_("exposure.auto") > 0.5f;
+    return settings.debugView == 0 && settings.value(param::exposure_auto) > 0.5f;
+}
+
+// The state only while auto exposure runs: the tone mapping applies none when the image is empty.
+void ExposurePass::prepare(PrepareContext& context) {
+    context.resources.publish(FrameResource::ExposureState,
+                              wanted(context.settings) ? FrameImage{.buffer = state_.id()} : FrameImage{});
 }
 
 void ExposurePass::execute(const FrameContext& frame) {
+    const FrameImage& hdr = frame.resources.read(FrameResource::PostHdr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_HISTOGRAM, histogramBins_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_STATE, state_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_STATE, frame.resources.write(FrameResource::ExposureState).buffer);
     histogram_.use();
-    // The post passes run at the post size (the output size under TAA upsampling; FrameTargets::resizePost).
-    const int width = frame.targets.postWidth(), height = frame.targets.postHeight();
-    glBindTextureUnit(UNIT_EXPOSURE_HDR, frame.targets.postHdrTexture());
+    // The post passes run at the post size (the output size under TAA upsampling).
+    const int width = frame.postWidth, height = frame.postHeight;
+    glBindTextureUnit(UNIT_EXPOSURE_HDR, hdr.texture());
     glProgramUniform2i(histogram_.id(), 0, width, height);
     glDispatchCompute(GLuint((width + 15) / 16), GLuint((height + 15) / 16), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -37,10 +44,6 @@ void ExposurePass::execute(const FrameContext& frame) {
     glProgramUniform1f(adapt_.id(), 2, kHighPercentile);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-void ExposurePass::bindState() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_EXPOSURE_STATE, state_.id());
 }
 
 float ExposurePass::meteredEv() const {

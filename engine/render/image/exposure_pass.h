@@ -1,7 +1,8 @@
 // Auto-exposure pass (shaders/image/luminance_histogram.comp, exposure_adapt.comp; docs/image.md): a log2-luminance
 // histogram of the HDR radiance (after TAA, before bloom), its trimmed mean mapped to middle grey, adapted over
-// time. Reads the HDR target; writes its state buffer (BINDING_EXPOSURE_STATE: metered EV, target EV), which the
-// tone-mapping pass reads on the GPU (no readback in the frame). Compute only: no fixed-function state applies.
+// time. Reads the post HDR radiance; writes its state buffer (FrameResource::ExposureState, BINDING_EXPOSURE_STATE:
+// metered EV, target EV), which the tone-mapping pass reads on the GPU (no readback in the frame). Compute only: no
+// fixed-function state applies.
 #pragma once
 #include <filesystem>
 #include <vector>
@@ -15,7 +16,11 @@ class ExposurePass : public Pass {
 public:
     explicit ExposurePass(const std::filesystem::path& shaderRoot);
     const char* name() const override { return "exposure"; }
+    PassResources resources() const override {
+        return {.reads = {FrameResource::PostHdr}, .writes = {FrameResource::ExposureState}};
+    }
     std::vector<gl::Program*> programs() override { return {&histogram_, &adapt_}; }
+    void prepare(PrepareContext& context) override;
     bool runs(const FrameContext& frame) const override { return wanted(frame.settings); }
     void execute(const FrameContext& frame) override;
     // exposure=auto on the final image.
@@ -24,7 +29,6 @@ public:
     // Weight in [0, 1] of each frame's metered value (1: converged at once, the offscreen default; the window
     // passes 1 - exp(-dt / time constant)).
     void setAdaptation(float weight) { adaptation_ = weight; }
-    void bindState() const;
     // Read back (tests, --stats): the exposure in EV applied by the tone-mapping pass, and this frame's target.
     float meteredEv() const;
     float targetEv() const;

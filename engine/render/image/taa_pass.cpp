@@ -26,14 +26,63 @@ TaaPass::TaaPass(const std::filesystem::path& shaderRoot)
 }
 
 bool TaaPass::wanted(const RenderSettings& settings) {
-    return int(settings.common_("aa")) == 1 && settings.debugView == 0 && !findIblMode(settings.ibl).accumulates;
+    return int(settings.value(param::aa)) == 1 && settings.debugView == 0 && !findIblMode(settings.ibl).accumulates;
 }
 
-void TaaPass::resize(int width, int height) {
+void TaaPass::prepare(PrepareContext& context) {
+    View& view = context.view;
+    const RenderSettings& settings = context.settings;
+    view.temporalAa = wanted(settings);
+    // TAA upsampling: the history, the post passes and the display image at the output size. taa.upsample=0
+    // resolves at the render size (the post passes then run on 1 / scale^2 fewer pixels) and leaves the upscale to
+    // the caller.
+    const bool upsample = view.temporalAa && settings.value(param::taa_upsample) > 0.5f &&
+                          view.outputWidth >= view.width && view.outputHeight >= view.height &&
+                          (view.outputWidth > view.width || view.outputHeight > view.height);
+    view.postWidth = upsample ? view.outputWidth : view.width;
+    view.postHeight = upsample ? view.outputHeight : view.height;
+    view.jitter = glm::vec2(0.0f);
+    if (view.temporalAa) {
+        // TAA jitters the projection: a screen-space translation, so UV derivatives and glint footprints stay those
+        // of the unjittered pixel (docs/image.md). AOVs and accumulating IBL modes stay unjittered.
+        const Camera& camera = view.camera;
+        view.jitter = beginFrame(camera.projection(view.aspect()) * camera.view(), camera.position, camera.forward(),
+                                 view.width, view.height, view.postWidth, view.postHeight);
+    } else {
+        reset();
+    }
+    // The glint part at the render size while TAA runs (the lighting pass writes it).
+    const FrameImage& hdr = context.resources.get(FrameResource::Hdr);
+    if (view.temporalAa && (!glintPart_ || hdr.width != glintPartWidth_ || hdr.height != glintPartHeight_)) {
+        // RGBA32F: glint radiance can exceed half-float range (one particle's radiance over a whole footprint).
+        glintPart_ = gl::createTexture2D(GL_RGBA32F, hdr.width, hdr.height);
+        glintPartWidth_ = hdr.width;
+        glintPartHeight_ = hdr.height;
+    }
+    context.resources.publish(FrameResource::GlintPart,
+                              glintPart_ ? FrameImage{.textures = {glintPart_.id()}, .width = glintPartWidth_,
+                                                      .height = glintPartHeight_}
+                                         : FrameImage{});
+    // The HDR radiance the post passes read: Hdr itself at the render size, else a target of the post size.
+    if (view.postWidth == hdr.width && view.postHeight == hdr.height) {
+        postHdr_ = {};
+        context.resources.publish(FrameResource::PostHdr, hdr);
+    } else {
+        if (!postHdr_ || postWidth_ != view.postWidth || postHeight_ != view.postHeight) {
+            postHdr_ = gl::createTexture2D(GL_RGBA32F, view.postWidth, view.postHeight);
+            postWidth_ = view.postWidth;
+            postHeight_ = view.postHeight;
+        }
+        context.resources.publish(FrameResource::PostHdr,
+                                  {.textures = {postHdr_.id()}, .width = postWidth_, .height = postHeight_});
+    }
+}
+
+void TaaPass::resizeHistory(int width, int height) {
     if (width == width_ && height == height_) return;
     width_ = width;
     height_ = height;
-    // RGBA32F throughout: glint radiance can exceed half-float range (see FrameTargets::allocateGlintPost).
+    // RGBA32F throughout: glint radiance can exceed half-float range (one particle over a whole footprint).
     resolved_ = gl::createTexture2D(GL_RGBA32F, width, height);
     for (int i = 0; i < 2; ++i) {
         historyBase_[i] = gl::createTexture2D(GL_RGBA32F, width, height);
@@ -55,7 +104,7 @@ void TaaPass::resize(int width, int height) {
 
 glm::vec2 TaaPass::beginFrame(const glm::mat4& unjitteredViewProjection, glm::vec3 cameraPosition,
                               glm::vec3 forward, int width, int height, int outputWidth, int outputHeight) {
-    resize(outputWidth, outputHeight);
+    resizeHistory(outputWidth, outputHeight);
     if (glm::distance(cameraPosition, previousPosition_) > kCutDistance ||
         glm::dot(glm::normalize(forward), previousForward_) < kCutCosine)
         reset();
@@ -69,16 +118,20 @@ glm::vec2 TaaPass::beginFrame(const glm::mat4& unjitteredViewProjection, glm::ve
 }
 
 void TaaPass::execute(const FrameContext& frame) {
-    resize(frame.targets.postWidth(), frame.targets.postHeight());
+    const GLuint hdr = frame.resources.read(FrameResource::Hdr).texture();
+    const GLuint glintPart = frame.resources.read(FrameResource::GlintPart).texture();
+    const GLuint depth = frame.resources.read(FrameResource::Depth).texture();
+    const GLuint postHdr = frame.resources.write(FrameResource::PostHdr).texture();
+    resizeHistory(frame.postWidth, frame.postHeight);
     const bool upsampling = width_ != frame.width || height_ != frame.height;
     gl::Program& program = upsampling ? upsample_ : program_;
     const int previous = current_;
     current_ = 1 - current_;
     gl::fullscreenState(resolveFbo_[current_].id(), width_, height_).apply();
     program.use();
-    glBindTextureUnit(UNIT_TAA_CURRENT, frame.targets.hdrTexture());
-    glBindTextureUnit(UNIT_TAA_GLINT_PART, frame.targets.glintPartTexture());
-    glBindTextureUnit(UNIT_TAA_DEPTH, frame.targets.depthTexture());
+    glBindTextureUnit(UNIT_TAA_CURRENT, hdr);
+    glBindTextureUnit(UNIT_TAA_GLINT_PART, glintPart);
+    glBindTextureUnit(UNIT_TAA_DEPTH, depth);
     glBindTextureUnit(UNIT_TAA_HISTORY_BASE, historyBase_[previous].id());
     glBindTextureUnit(UNIT_TAA_HISTORY_GLINT, historyGlint_[previous].id());
     glBindSampler(UNIT_TAA_HISTORY_BASE, linearClamp_.id());
@@ -86,10 +139,10 @@ void TaaPass::execute(const FrameContext& frame) {
     const glm::mat4 reprojection = previousViewProjection_ * glm::inverse(viewProjection_);
     glProgramUniformMatrix4fv(program.id(), 0, 1, GL_FALSE, &reprojection[0][0]);
     glProgramUniform1i(program.id(), 1, framesSinceReset_ == 0 ? 1 : 0);
-    glProgramUniform1f(program.id(), 2, frame.settings.common_("taa.feedback"));
+    glProgramUniform1f(program.id(), 2, frame.settings.value(param::taa_feedback));
     glProgramUniform1f(program.id(), 3, 1.25f);   // variance clip box half-size, standard deviations (Salvi 2016)
-    glProgramUniform1i(program.id(), 4, frame.settings.common_("taa.glint_history") > 0.5f ? 1 : 0);
-    glProgramUniform1f(program.id(), 5, frame.settings.common_("taa.glint_feedback"));
+    glProgramUniform1i(program.id(), 4, frame.settings.value(param::taa_glint_history) > 0.5f ? 1 : 0);
+    glProgramUniform1f(program.id(), 5, frame.settings.value(param::taa_glint_feedback));
     if (upsampling) {
         glProgramUniform2f(program.id(), 6, jitter_.x, jitter_.y);
         glProgramUniform1f(program.id(), 7, kUpsampleKernelWidth);
@@ -99,8 +152,7 @@ void TaaPass::execute(const FrameContext& frame) {
     glBindSampler(UNIT_TAA_HISTORY_BASE, 0);
     glBindSampler(UNIT_TAA_HISTORY_GLINT, 0);
     // The passes after this one read the post HDR target (the HDR target itself without upsampling).
-    glCopyImageSubData(resolved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, frame.targets.postHdrTexture(), GL_TEXTURE_2D, 0, 0,
-                       0, 0, width_, height_, 1);
+    glCopyImageSubData(resolved_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, postHdr, GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
     ++framesSinceReset_;
 }
 

@@ -1,11 +1,11 @@
 // Temporal anti-aliasing pass (docs/image.md): owns the jitter sequence, the history (non-glint and glint
-// radiance, ping-pong) and the cut detection. Reads the HDR radiance, the glint part the lighting pass wrote
-// (FrameTargets::glintPartTexture) and the depth; writes the resolved radiance into FrameTargets::postHdrTexture
-// (and its history). The history has the post size (the output size): at the render size the plain resolve runs
-// (shaders/image/taa_resolve.frag), below it the upsampling resolve (TAAU, shaders/image/taa_upsample.frag), so a
-// change of render scale keeps the history (it is reprojected like camera motion) and only a change of the output
-// size, a cut or an edit resets it. The renderer calls beginFrame() before the G-buffer pass, when TAA runs, to
-// get this frame's jitter.
+// radiance, ping-pong), the cut detection, the glint part target (FrameResource::GlintPart, which the lighting pass
+// writes) and the post HDR target (FrameResource::PostHdr). Reads the HDR radiance, the glint part and the depth;
+// writes the resolved radiance into PostHdr (and its history). The history has the post size (the output size): at
+// the render size the plain resolve runs (shaders/image/taa_resolve.frag), below it the upsampling resolve (TAAU,
+// shaders/image/taa_upsample.frag), so a change of render scale keeps the history (it is reprojected like camera
+// motion) and only a change of the output size, a cut or an edit resets it. Its prepare() decides whether the view
+// is jittered, sets the view's jitter and post size, and publishes its targets.
 #pragma once
 #include <filesystem>
 
@@ -20,7 +20,12 @@ class TaaPass : public Pass {
 public:
     explicit TaaPass(const std::filesystem::path& shaderRoot);
     const char* name() const override { return "taa"; }
+    PassResources resources() const override {
+        return {.reads = {FrameResource::Hdr, FrameResource::GlintPart, FrameResource::Depth},
+                .writes = {FrameResource::PostHdr}};
+    }
     std::vector<gl::Program*> programs() override { return {&program_, &upsample_}; }
+    void prepare(PrepareContext& context) override;
     bool runs(const FrameContext& frame) const override { return frame.temporalAa; }
     void execute(const FrameContext& frame) override;
 
@@ -32,20 +37,23 @@ public:
         if (framesSinceReset_ != 0) ++resets_;
         framesSinceReset_ = 0;
     }
-    // Starts a frame rendered at width x height and resolved at outputWidth x outputHeight (>= the render size):
-    // resets on a change of the output size or a camera cut; returns this frame's jitter in render pixels.
-    glm::vec2 beginFrame(const glm::mat4& unjitteredViewProjection, glm::vec3 cameraPosition, glm::vec3 forward,
-                         int width, int height, int outputWidth, int outputHeight);
     unsigned framesSinceReset() const { return framesSinceReset_; }
     // Resets counted since construction (tests: a render-scale change must not reset).
     unsigned resets() const { return resets_; }
-    void resize(int width, int height);
 
     // Reconstruction kernel width of the upsampling resolve, in output pixels (measured: docs/image.md).
     static constexpr float kUpsampleKernelWidth = 1.0f;
 
 private:
+    // Starts a frame rendered at width x height and resolved at outputWidth x outputHeight (>= the render size):
+    // resets on a change of the output size or a camera cut; returns this frame's jitter in render pixels.
+    glm::vec2 beginFrame(const glm::mat4& unjitteredViewProjection, glm::vec3 cameraPosition, glm::vec3 forward,
+                         int width, int height, int outputWidth, int outputHeight);
+    void resizeHistory(int width, int height);
+
     gl::Program program_, upsample_;
+    gl::Texture glintPart_, postHdr_;
+    int glintPartWidth_ = 0, glintPartHeight_ = 0, postWidth_ = 0, postHeight_ = 0;
     int width_ = 0, height_ = 0;   // history (output) size
     unsigned resets_ = 0;
     glm::vec2 jitter_{0.0f};

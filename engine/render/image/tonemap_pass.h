@@ -1,25 +1,34 @@
-// Tone-mapping pass: HDR radiance (or the debug view) -> the display image, sRGB 8-bit (shaders/image/tonemap.frag).
-// Reads the HDR target, the bloom pass's result and the exposure pass's state when those ran this frame.
+// Tone-mapping pass: HDR radiance (or the debug view) -> the display image, sRGB 8-bit (shaders/image/tonemap.frag),
+// at the post size. Reads the post HDR radiance, and the bloom result and the exposure state when those passes
+// published them this frame; owns and writes FrameResource::Display.
 #pragma once
 #include <filesystem>
 
-#include "render/image/bloom_pass.h"
-#include "render/image/exposure_pass.h"
+#include "gl/handles.h"
 #include "render/frame/pass.h"
 
 namespace glimmer {
 
 class TonemapPass : public Pass {
 public:
-    TonemapPass(const std::filesystem::path& shaderRoot, const BloomPass& bloom, const ExposurePass& exposure);
+    explicit TonemapPass(const std::filesystem::path& shaderRoot);
     const char* name() const override { return "tonemap"; }
+    PassResources resources() const override {
+        return {.reads = {FrameResource::PostHdr, FrameResource::Bloom, FrameResource::ExposureState},
+                .writes = {FrameResource::Display}};
+    }
     std::vector<gl::Program*> programs() override { return {&program_}; }
+    // (Re)allocates the display image at this frame's post size.
+    void prepare(PrepareContext& context) override;
     void execute(const FrameContext& frame) override;
+    GLuint displayFramebuffer() const { return framebuffer_.id(); }
 
 private:
     gl::Program program_;
-    const BloomPass& bloom_;
-    const ExposurePass& exposure_;
+    gl::Texture display_;
+    gl::Framebuffer framebuffer_;
+    gl::Buffer noExposure_;
+    int width_ = 0, height_ = 0;
 };
 
 }  // namespace glimmer

@@ -12,17 +12,15 @@
 #include "environment/ibl/object_environment.h"
 #include "environment/environment.h"
 #include "render/gpu_scene.h"
-#include "render/frame/gbuffer_pass.h"
-#include "render/frame/lighting_pass.h"
-#include "render/shader_interface.h"
+#include "render/renderer.h"
 
 namespace glimmer {
 
 ProbeSettings probeSettings(const RenderSettings& settings) {
     ProbeSettings p;
-    p.enabled = settings.common_("probes.enabled") > 0.5f;
-    p.faceSize = int(settings.common_("probes.face_size"));
-    p.maxProbes = std::clamp(int(settings.common_("probes.max")), 0, kMaxReflectionProbes);
+    p.enabled = settings.value(param::probes_enabled) > 0.5f;
+    p.faceSize = int(settings.value(param::probes_face_size));
+    p.maxProbes = std::clamp(int(settings.value(param::probes_max)), 0, kMaxReflectionProbes);
     return p;
 }
 
@@ -62,7 +60,7 @@ void buildKey(const Scene& scene, const RenderSettings& settings, const ProbeSet
         key.insert(key.end(), {float(int(l.type)), l.vector.x, l.vector.y, l.vector.z, l.color[0], l.color[1],
                                l.color[2], l.intensity});
     key.insert(key.end(), {scene.skyColor.x, scene.skyColor.y, scene.skyColor.z});
-    for (const CommonParam& p : commonParams()) key.push_back(settings.common_(p.spec.name));
+    for (const CommonParam& p : commonParams()) key.push_back(settings.value({p.spec.name.c_str()}));
     std::ostringstream out;
     out << scene.name << '\n' << scene.environment << '\n' << scene.textures.size();
     text = out.str();
@@ -101,38 +99,31 @@ ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuS
     return timings;
 }
 
+// The settings a capture renders with: the default method and IBL mode (whatever the frame uses), the frame's
+// common parameters (exposure, ambient, env.intensity / rotation, lod...), and nothing that needs this camera or
+// other frames: no probes (no probe sees another), no shadows (the maps are fitted to the main camera, not to a
+// probe's six faces, so a capture sees direct light unshadowed: docs/reflection_probes.md), no ambient occlusion,
+// no TAA and no image pipeline.
+static RenderSettings captureSettings(const RenderSettings& frame) {
+    RenderSettings settings;
+    settings.common = frame.common;
+    for (const char* off : {"probes.enabled=0", "shadow.enabled=0", "ao.enabled=0", "aa=off", "lighting.split_glinty=0"})
+        settings.apply(off);
+    return settings;
+}
+
 void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
                                const RenderSettings& settings, const ProbeSettings& ps, Update& timings) {
     std::vector<ProbePlacement> placements = placeReflectionProbes(scene, ps.maxProbes);
     if (placements.empty()) return;
     Stopwatch clock;
-    // The default method and IBL mode light the captures (RenderSettings' defaults, whatever the frame uses).
-    const RenderSettings defaults;
-    if (!gbuffer_) {
-        gbuffer_ = std::make_unique<GBufferPass>(shaderRoot_);
-        // Without shadow lookups: the shadow maps are fitted to the main camera, not to a probe's six faces, so a
-        // capture sees direct light unshadowed (docs/reflection_probes.md).
-        lighting_ = std::make_unique<LightingPass>(shaderRoot_, defaults.method, defaults.ibl, /*shadows=*/false);
+    const RenderSettings renderSettings = captureSettings(settings);
+    if (!renderer_) {
+        renderer_ = std::make_unique<Renderer>(shaderRoot_, renderSettings, FrameKind::Capture, &environment);
         prefilter_ = std::make_unique<CubePrefilter>(shaderRoot_);
-        frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
-        methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
-        iblParams_ = gl::createBuffer(kMaxIblParams * sizeof(float), nullptr);
-        GLuint vao = 0;
-        glCreateVertexArrays(1, &vao);
-        emptyVao_ = gl::VertexArray(vao);
     }
+    renderer_->setSettings(renderSettings);
     const int size = ps.faceSize;
-    targets_.resize(size, size, false);
-    RenderSettings captureSettings = defaults;
-    captureSettings.common = settings.common;   // exposure, ambient, env.intensity / rotation as the frame's
-    std::vector<float> methodParams = packMethodParams(findGlintMethod(defaults.method), {});
-    glNamedBufferSubData(methodParams_.id(), 0, GLsizeiptr(methodParams.size() * sizeof(float)), methodParams.data());
-    std::vector<float> iblParams = packIblParams(findIblMode(defaults.ibl), {});
-    glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
-    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameUniforms_.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_METHOD_PARAMS, methodParams_.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_IBL_PARAMS, iblParams_.id());
-
     if (!source_ || faceSize_ != size) {
         GLuint cube = 0;
         glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &cube);
@@ -151,32 +142,19 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
         // so a copy of the instance list and materials is all a draw needs (no mesh copy).
         Scene view;
         view.materials = scene.materials;
+        view.skyColor = scene.skyColor;
+        view.environment = scene.environment;
         for (size_t i = 0; i < scene.instances.size(); ++i)
             if (int(i) != placement.excludedInstance) view.instances.push_back(scene.instances[i]);
         std::array<std::vector<float>, 6> axisDistance;
         std::vector<std::vector<float>> rgba(6);
         size_t covered = 0;
         for (int face = 0; face < 6; ++face) {
-            Camera camera = ibl::cubeFaceCamera(placement.position, face);
-            FrameUniforms u{};
-            u.view = camera.view();
-            u.projection = camera.projection(1.0f);
-            u.viewProjection = u.projection * u.view;
-            u.inverseViewProjection = glm::inverse(u.viewProjection);
-            u.cameraPosition = glm::vec4(camera.position, 1.0f);
-            u.skyColor = glm::vec4(scene.skyColor, 1.0f);
-            u.viewport = {size, size, 0, 0};
-            u.exposure = {1.0f, float(gpuScene.lightCount()), captureSettings.common_("ambient"),
-                          float(gpuScene.areaLightCount())};
-            glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(u), &u);
-            const FrameContext frame{view,     gpuScene, camera,  captureSettings, targets_, environment, nullptr,
-                                     nullptr,  size,     size,    false,           1.0f,     emptyVao_.id(),
-                                     u.viewProjection, false, this, false};
-            gbuffer_->execute(frame);
-            lighting_->execute(frame);
-            glGetTextureImage(targets_.hdrTexture(), 0, GL_RGBA, GL_FLOAT, GLsizei(hdr.size() * sizeof(float)), hdr.data());
-            glGetTextureImage(targets_.depthTexture(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                              GLsizei(depth.size() * sizeof(float)), depth.data());
+            View faceView{.camera = ibl::cubeFaceCamera(placement.position, face), .width = size, .height = size};
+            renderer_->renderView(view, gpuScene, faceView);
+            const Camera& camera = faceView.camera;
+            hdr = renderer_->readHdr();
+            depth = renderer_->readDepth();
             // Sky texels become (0, 0, 0, 0): premultiplied radiance and coverage. Reversed-Z infinite projection:
             // view distance along the face axis = near / depth.
             axisDistance[size_t(face)].resize(texels);
@@ -244,10 +222,15 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
     glNamedBufferSubData(probeBlock_.id(), 0, sizeof(u), &u);
 }
 
-void ReflectionProbes::bind(bool active) const {
+FrameImage ReflectionProbes::image(bool active) const {
     const bool any = active && !probes_.empty() && specular_;
-    glBindBufferBase(GL_UNIFORM_BUFFER, kProbeBinding, any ? probeBlock_.id() : emptyBlock_.id());
-    glBindTextureUnit(kProbeSpecularUnit, any ? specular_.id() : 0);
+    return {.textures = {any ? specular_.id() : 0}, .buffer = any ? probeBlock_.id() : emptyBlock_.id(),
+            .width = faceSize_, .height = faceSize_};
+}
+
+void bindProbeInputs(const FrameImage& probes) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, kProbeBinding, probes.buffer);
+    glBindTextureUnit(kProbeSpecularUnit, probes.texture());
 }
 
 nlohmann::json ReflectionProbes::stats() const {

@@ -1,6 +1,6 @@
 // Reflection probes: cube maps rendered from the scene at chosen points (render/probes/reflection_probe_placement.h),
 // prefiltered like the distant environment (the same CubePrefilter, levels and NDF layers), read by the lighting
-// pass through common/ibl.glsl with the reflected ray parallax-corrected to each probe's proxy box (Lagarde &
+// pass through environment/prefiltered_lookup.glsl with the reflected ray parallax-corrected to each probe's proxy box (Lagarde &
 // Zanuttini 2012) and blended with the distant environment by the probe's coverage: a probe stores premultiplied
 // radiance with alpha 1 where it saw geometry and 0 where it saw sky, so
 //     L = probe.rgb + (1 - probe.a) * L_environment
@@ -8,9 +8,9 @@
 //
 // Captured only when something a probe sees changed (instances, materials, lights, environment, the common
 // parameters, probes.*); a frame with nothing changed reads the cached maps. A capture renders each probe's six
-// faces with the frame's own G-buffer and a default lighting pass (the default method and IBL mode, probes off:
-// no probe sees another probe), culled per face by GpuScene's chunks, then reads back colour and depth to zero the
-// sky, fit the proxy box and upload the cube.
+// faces as views of a renderer of its own (Renderer::renderView with FrameKind::Capture: the G-buffer and lighting
+// passes, the default method and IBL mode, probes off: no probe sees another probe), culled per face by GpuScene's
+// chunks, then reads back colour and depth to zero the sky, fit the proxy box and upload the cube.
 #pragma once
 #include "common/bindings.glsl"
 #include <glm/glm.hpp>
@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "gl/handles.h"
 #include "environment/cube_prefilter.h"
-#include "render/frame/gbuffer.h"
+#include "gl/handles.h"
+#include "render/frame/frame_resources.h"
 #include "render/probes/reflection_probe_placement.h"
 #include "render/settings.h"
 
@@ -31,8 +31,7 @@ namespace glimmer {
 
 class Environment;
 class GpuScene;
-class GBufferPass;
-class LightingPass;
+class Renderer;
 
 // std140 mirror of ProbeBlock in shaders/environment/prefiltered_lookup.glsl.
 struct GpuProbe {
@@ -60,6 +59,9 @@ struct ProbeSettings {
 };
 ProbeSettings probeSettings(const RenderSettings& settings);
 
+// Binds a FrameResource::ReflectionProbes image (block and array) for the lighting pass.
+void bindProbeInputs(const FrameImage& probes);
+
 class ReflectionProbes {
 public:
     static constexpr int kLevels = 6;   // as the environment: level k holds sqrt(alpha) = k / 5
@@ -75,9 +77,9 @@ public:
     // environment must be prepared for `scene`. Leaves the frame uniform blocks bound to its own buffers.
     Update update(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
                   const RenderSettings& settings);
-    // Binds the probe block and the probe array; `active` false binds a block with no probes (the lighting
-    // reads the distant environment alone).
-    void bind(bool active) const;
+    // FrameResource::ReflectionProbes: the probe array and block; `active` false gives a block with no probes (the
+    // lighting reads the distant environment alone).
+    FrameImage image(bool active) const;
 
     struct Probe {
         ProbePlacement placement;
@@ -95,12 +97,9 @@ private:
                  const RenderSettings& settings, const ProbeSettings& probeSettings, Update& timings);
 
     std::filesystem::path shaderRoot_;
-    std::unique_ptr<GBufferPass> gbuffer_;
-    std::unique_ptr<LightingPass> lighting_;
+    std::unique_ptr<Renderer> renderer_;   // renders the captures (built on the first one)
     std::unique_ptr<CubePrefilter> prefilter_;
-    FrameTargets targets_;
-    gl::Buffer frameUniforms_, methodParams_, iblParams_, probeBlock_, emptyBlock_;
-    gl::VertexArray emptyVao_;
+    gl::Buffer probeBlock_, emptyBlock_;
     gl::Texture specular_, source_;
     int faceSize_ = 0;
     std::vector<Probe> probes_;

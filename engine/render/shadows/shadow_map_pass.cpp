@@ -6,20 +6,31 @@
 
 namespace glimmer {
 
-ShadowMapPass::ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array)
+ShadowMapPass::ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array,
+                             std::shared_ptr<ShadowMaps> shadows)
     : program_(shaderRoot, {"shadow_depth", {{GL_VERTEX_SHADER, "shadows/shadow_depth.vert"},
                                              {GL_FRAGMENT_SHADER, "shadows/shadow_depth.frag"}}}),
-      array_(array) {}
+      array_(array),
+      shadows_(std::move(shadows)) {}
+
+void ShadowMapPass::prepare(PrepareContext& context) {
+    if (array_ != ShadowArray::Sun) return;   // the sun pass fits every light's views, once per frame
+    // Shadow views fitted to this camera (only the invalidated ones are rendered); a later sample of an accumulated
+    // view keeps sample 0's.
+    if (!context.blendSample)
+        shadows_->prepare(context.scene, context.gpuScene, context.view.camera, context.view.aspect(), context.settings);
+    context.resources.publish(FrameResource::ShadowMaps, shadows_->mapsImage());
+}
 
 bool ShadowMapPass::runs(const FrameContext& frame) const {
-    if (!frame.shadows || frame.blendSample) return false;
-    for (const ShadowView& view : frame.shadows->views())
+    if (frame.blendSample) return false;
+    for (const ShadowView& view : shadows_->views())
         if (view.array == array_) return true;
     return false;
 }
 
 void ShadowMapPass::execute(const FrameContext& frame) {
-    ShadowMaps& shadows = *frame.shadows;
+    ShadowMaps& shadows = *shadows_;
     for (ShadowView& view : shadows.views()) {
         if (view.array != array_ || !view.dirty) continue;
         const int size = shadows.mapSizeOf(view);

@@ -4,8 +4,11 @@
 // views of spot lights). On a frame where nothing moved no view is dirty and the pass draws nothing.
 // State: depth test GREATER and writes (reversed Z, cleared to 0), no colour target, no blending, back faces of
 // single-sided materials culled (GpuScene), slope-scaled polygon offset away from the light (shadow.slope_bias).
+// The three shadow passes (sun, point, mask) share one ShadowMaps, the feature's state; the sun pass's prepare()
+// fits every light's views for this frame (it comes first in the frame list) and publishes the maps.
 #pragma once
 #include <filesystem>
+#include <memory>
 
 #include "render/frame/pass.h"
 #include "render/shadows/shadow_maps.h"
@@ -14,9 +17,11 @@ namespace glimmer {
 
 class ShadowMapPass : public Pass {
 public:
-    ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array);
+    ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array, std::shared_ptr<ShadowMaps> shadows);
     const char* name() const override { return array_ == ShadowArray::Sun ? "shadow_sun" : "shadow_point"; }
+    PassResources resources() const override { return {.writes = {FrameResource::ShadowMaps}}; }
     std::vector<gl::Program*> programs() override { return {&program_}; }
+    void prepare(PrepareContext& context) override;
     // Whenever a light of this kind has a shadow (so --stats lists the pass with ~0 ms on cached frames), except
     // on later samples of an accumulated view (same camera: nothing to re-render).
     bool runs(const FrameContext& frame) const override;
@@ -25,6 +30,7 @@ public:
 private:
     gl::Program program_;
     ShadowArray array_;
+    std::shared_ptr<ShadowMaps> shadows_;
 };
 
 }  // namespace glimmer

@@ -68,30 +68,22 @@ gl::Texture createDepthArray(int size, int layers) {
 
 ShadowSettings shadowSettingsOf(const RenderSettings& settings) {
     ShadowSettings s;
-    s.enabled = settings.common_("shadow.enabled") > 0.5f;
-    s.mapSize = int(settings.common_("shadow.map_size"));
-    s.cascades = std::clamp(int(settings.common_("shadow.cascades")), 1, kMaxCascades);
-    s.filterRadius = settings.common_("shadow.filter_radius");
-    s.depthBias = settings.common_("shadow.bias");
-    s.normalBias = settings.common_("shadow.normal_bias");
-    s.slopeBias = settings.common_("shadow.slope_bias");
-    s.distance = settings.common_("shadow.distance");
-    s.pointMapSize = int(settings.common_("shadow.point_map_size"));
-    s.cache = settings.common_("shadow.cache") > 0.5f;
-    s.halfResMask = settings.common_("shadow.half_res") > 0.5f;
+    s.enabled = settings.value(param::shadow_enabled) > 0.5f;
+    s.mapSize = int(settings.value(param::shadow_map_size));
+    s.cascades = std::clamp(int(settings.value(param::shadow_cascades)), 1, kMaxCascades);
+    s.filterRadius = settings.value(param::shadow_filter_radius);
+    s.depthBias = settings.value(param::shadow_bias);
+    s.normalBias = settings.value(param::shadow_normal_bias);
+    s.slopeBias = settings.value(param::shadow_slope_bias);
+    s.distance = settings.value(param::shadow_distance);
+    s.pointMapSize = int(settings.value(param::shadow_point_map_size));
+    s.cache = settings.value(param::shadow_cache) > 0.5f;
+    s.halfResMask = settings.value(param::shadow_half_res) > 0.5f;
     return s;
 }
 
 ShadowMaps::ShadowMaps() {
     block_ = gl::createBuffer(sizeof(ShadowBlockData), nullptr);
-    GLuint sampler = 0;
-    glCreateSamplers(1, &sampler);
-    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    depthSampler_ = gl::Sampler(sampler);
     GLuint fb = 0;
     glCreateFramebuffers(1, &fb);
     framebuffer_ = gl::Framebuffer(fb);
@@ -113,6 +105,16 @@ void ShadowMaps::ensureArrays() {
     }
     if (!localArray_ || localLayers != localLayers_ || localSize != localSize_) {
         localArray_ = createDepthArray(localSize, localLayers);
+        // The same depths read without comparison (the soft shadows' blocker search): a view with its own state.
+        GLuint view = 0;
+        glGenTextures(1, &view);
+        glTextureView(view, GL_TEXTURE_2D_ARRAY, localArray_.id(), GL_DEPTH_COMPONENT32F, 0, 1, 0, localLayers);
+        glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(view, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(view, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(view, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        localDepthView_ = gl::Texture(view);
         localLayers_ = localLayers, localSize_ = localSize;
         for (LocalState& local : locals_) local.valid = false;
     }
@@ -294,37 +296,48 @@ void ShadowMaps::upload(const std::vector<glm::ivec4>& lightRecords) {
     glNamedBufferSubData(block_.id(), 0, sizeof(data), &data);
 }
 
-void ShadowMaps::bind() const {
-    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_SHADOWS, block_.id());
-    glBindTextureUnit(UNIT_SHADOW_SUN, sunArray_.id());
-    glBindTextureUnit(UNIT_SHADOW_LOCAL, localArray_.id());
-    glBindTextureUnit(UNIT_SHADOW_LOCAL_DEPTH, localArray_.id());   // read through depthSampler_: no compare
-    glBindSampler(UNIT_SHADOW_LOCAL_DEPTH, depthSampler_.id());
-    glBindTextureUnit(UNIT_SHADOW_MASK, mask_.id());
-}
-
-GLuint ShadowMaps::maskFramebuffer(int width, int height, int layer) {
+void ShadowMaps::ensureMask(int width, int height) {
     const int step = maskStep();
     const glm::ivec2 size((std::max(width, 1) + step - 1) / step, (std::max(height, 1) + step - 1) / step);
     const int layers = std::max(maskLayers(), 1);
-    if (!mask_ || size != maskSize_ || layers != maskTextureLayers_) {
-        GLuint id = 0;
-        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-        glTextureStorage3D(id, 1, GL_RGBA8, size.x, size.y, layers);   // visibility in [0, 1]; 0 and 1 exact
-        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        mask_ = gl::Texture(id);
-        if (!maskFramebuffer_) {
-            GLuint fb = 0;
-            glCreateFramebuffers(1, &fb);
-            maskFramebuffer_ = gl::Framebuffer(fb);
-        }
-        maskSize_ = size;
-        maskTextureLayers_ = layers;
+    if (mask_ && size == maskSize_ && layers == maskTextureLayers_) return;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    glTextureStorage3D(id, 1, GL_RGBA8, size.x, size.y, layers);   // visibility in [0, 1]; 0 and 1 exact
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    mask_ = gl::Texture(id);
+    if (!maskFramebuffer_) {
+        GLuint fb = 0;
+        glCreateFramebuffers(1, &fb);
+        maskFramebuffer_ = gl::Framebuffer(fb);
     }
+    maskSize_ = size;
+    maskTextureLayers_ = layers;
+}
+
+GLuint ShadowMaps::maskFramebuffer(int layer) {
     glNamedFramebufferTextureLayer(maskFramebuffer_.id(), GL_COLOR_ATTACHMENT0, mask_.id(), 0,
-                                   std::clamp(layer, 0, layers - 1));
+                                   std::clamp(layer, 0, maskTextureLayers_ - 1));
     return maskFramebuffer_.id();
+}
+
+FrameImage ShadowMaps::mapsImage() const {
+    return {.textures = {sunArray_.id(), localArray_.id(), localDepthView_.id()}, .buffer = block_.id(),
+            .width = sunSize_, .height = sunSize_};
+}
+
+FrameImage ShadowMaps::maskImage() const {
+    if (!mask_) return {};
+    return {.textures = {mask_.id()}, .width = maskSize_.x, .height = maskSize_.y};
+}
+
+void bindShadowInputs(const FrameImage& maps, const FrameImage& mask) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_SHADOWS, maps.buffer);
+    glBindTextureUnit(UNIT_SHADOW_SUN, maps.texture(0));
+    glBindTextureUnit(UNIT_SHADOW_LOCAL, maps.texture(1));
+    glBindTextureUnit(UNIT_SHADOW_LOCAL_DEPTH, maps.texture(2));   // the local depths without compare (soft shadows)
+    glBindTextureUnit(UNIT_SHADOW_MASK, mask.texture(0));
 }
 
 GLuint ShadowMaps::framebufferFor(const ShadowView& view) {

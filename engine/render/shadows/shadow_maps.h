@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gl/handles.h"
+#include "render/frame/frame_resources.h"
 #include "render/gpu_scene.h"
 #include "render/settings.h"
 #include "render/shadows/shadow_cascades.h"
@@ -77,6 +78,10 @@ struct ShadowView {
     bool dirty = true;            // must be rendered this frame
 };
 
+// Binds the shadow block, both depth arrays and the mask at the units of common/bindings.glsl (the shadow-mask and
+// lighting passes).
+void bindShadowInputs(const FrameImage& maps, const FrameImage& mask);
+
 class ShadowMaps {
 public:
     ShadowMaps();
@@ -85,13 +90,15 @@ public:
     // block. With shadow.enabled = 0 no view exists and every light's visibility is 1.
     void prepare(const Scene& scene, const GpuScene& gpuScene, const Camera& camera, float aspect,
                  const RenderSettings& settings);
-    // The shadow block, both depth arrays and the shadow mask, for the shadow-mask and lighting passes (units and
-    // binding in common/bindings.glsl).
-    void bind() const;
+    // What the frame's other passes read (FrameResource::ShadowMaps: both depth arrays and the shadow block;
+    // FrameResource::ShadowMask), bound by bindShadowInputs().
+    FrameImage mapsImage() const;
+    FrameImage maskImage() const;
     // The shadow mask (render/shadows/shadow_mask_pass.h) for a width x height frame: an RGBA8 array of maskSize()
     // texels and maskLayers() layers holding every shadowed light's visibility (one channel per slot) at every
-    // maskStep()-th pixel; reallocated when the size or the layer count changes. The framebuffer of `layer`.
-    GLuint maskFramebuffer(int width, int height, int layer);
+    // maskStep()-th pixel; reallocated when the size or the layer count changes. Then the framebuffer of `layer`.
+    void ensureMask(int width, int height);
+    GLuint maskFramebuffer(int layer);
     int maskStep() const { return settings_.halfResMask ? 2 : 1; }
     int maskLayers() const { return (slots_ + 3) / 4; }
     glm::ivec2 maskSize() const { return maskSize_; }
@@ -143,6 +150,7 @@ private:
     std::vector<LocalState> locals_;
     std::vector<ShadowView> views_;
     gl::Texture sunArray_, localArray_;
+    gl::Texture localDepthView_;   // localArray_ read without compare (soft shadows' blocker search)
     int sunLayers_ = 0, localLayers_ = 0, sunSize_ = 0, localSize_ = 0;
     gl::Framebuffer framebuffer_;
     gl::Texture mask_;
@@ -152,7 +160,6 @@ private:
     int slots_ = 0;                          // shadowed lights this frame
     std::vector<int> slotLights_;            // light index of each slot
     gl::Buffer block_;
-    gl::Sampler depthSampler_;   // the local array read without compare (soft shadows' blocker search)
     Stats stats_;
 };
 

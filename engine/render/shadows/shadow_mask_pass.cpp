@@ -6,27 +6,35 @@
 
 namespace glimmer {
 
-ShadowMaskPass::ShadowMaskPass(const std::filesystem::path& shaderRoot)
+ShadowMaskPass::ShadowMaskPass(const std::filesystem::path& shaderRoot, std::shared_ptr<ShadowMaps> shadows)
     : program_(shaderRoot,
-               {"shadow_mask", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "shadows/shadow_mask.frag"}}}) {}
+               {"shadow_mask", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "shadows/shadow_mask.frag"}}}),
+      shadows_(std::move(shadows)) {}
+
+void ShadowMaskPass::prepare(PrepareContext& context) {
+    if (shadows_->settings().enabled && !context.blendSample) shadows_->ensureMask(context.view.width, context.view.height);
+    context.resources.publish(FrameResource::ShadowMask, shadows_->maskImage());
+}
 
 bool ShadowMaskPass::runs(const FrameContext& frame) const {
-    return frame.shadows && frame.shadows->settings().enabled && !frame.blendSample;
+    return shadows_->settings().enabled && !frame.blendSample;
 }
 
 void ShadowMaskPass::execute(const FrameContext& frame) {
+    const FrameImage& maps = frame.resources.read(FrameResource::ShadowMaps);
+    const FrameImage& gbuffer = frame.resources.read(FrameResource::GBuffer);
+    const GLuint depth = frame.resources.read(FrameResource::Depth).texture();
+    frame.resources.write(FrameResource::ShadowMask);
     // One draw per layer of four shadowed lights (the mask's texture is unbound while it is the target).
-    for (int layer = 0; layer < frame.shadows->maskLayers(); ++layer) {
-        const GLuint framebuffer = frame.shadows->maskFramebuffer(frame.width, frame.height, layer);
-        const glm::ivec2 size = frame.shadows->maskSize();
+    for (int layer = 0; layer < shadows_->maskLayers(); ++layer) {
+        const GLuint framebuffer = shadows_->maskFramebuffer(layer);
+        const glm::ivec2 size = shadows_->maskSize();
         gl::fullscreenState(framebuffer, size.x, size.y).apply();
         program_.use();
-        frame.shadows->bind();
-        glBindTextureUnit(UNIT_SHADOW_MASK, 0);
+        bindShadowInputs(maps, {});
         glProgramUniform1i(program_.id(), 0, layer);
-        glBindTextureUnit(UNIT_GBUFFER_NORMAL_ALPHA,
-                          frame.targets.gbufferTexture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
-        glBindTextureUnit(UNIT_GBUFFER_DEPTH, frame.targets.depthTexture());
+        glBindTextureUnit(UNIT_GBUFFER_NORMAL_ALPHA, gbuffer.texture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
+        glBindTextureUnit(UNIT_GBUFFER_DEPTH, depth);
         glBindVertexArray(frame.emptyVao);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }

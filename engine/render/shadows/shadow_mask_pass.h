@@ -1,4 +1,4 @@
-// Shadow-mask pass (shaders/shadows/shadow_mask.frag): the visibility of every shadowed light (common/shadows.glsl: view
+// Shadow-mask pass (shaders/shadows/shadow_mask.frag): the visibility of every shadowed light (shadows/shadows.glsl: view
 // selection, bias, PCF) at every ShadowMaps::maskStep()-th G-buffer pixel, into ShadowMaps' RGBA8 mask array, one
 // channel per light, one draw per four lights. The lighting pass reads it back with a plane-aware 2 x 2
 // interpolation (at half resolution) or one texel per layer, instead of filtering every light's map inside its light
@@ -7,22 +7,31 @@
 // State: no depth test, no blending, viewport = the mask's size.
 #pragma once
 #include <filesystem>
+#include <memory>
 
 #include "render/frame/pass.h"
+#include "render/shadows/shadow_maps.h"
 
 namespace glimmer {
 
 class ShadowMaskPass : public Pass {
 public:
-    explicit ShadowMaskPass(const std::filesystem::path& shaderRoot);
+    ShadowMaskPass(const std::filesystem::path& shaderRoot, std::shared_ptr<ShadowMaps> shadows);
     const char* name() const override { return "shadow_mask"; }
+    PassResources resources() const override {
+        return {.reads = {FrameResource::ShadowMaps, FrameResource::GBuffer, FrameResource::Depth},
+                .writes = {FrameResource::ShadowMask}};
+    }
     std::vector<gl::Program*> programs() override { return {&program_}; }
+    // Allocates the mask for this frame's size and shadowed-light count and publishes it.
+    void prepare(PrepareContext& context) override;
     // With shadows on, except on later samples of an accumulated view (same G-buffer: the mask is still valid).
     bool runs(const FrameContext& frame) const override;
     void execute(const FrameContext& frame) override;
 
 private:
     gl::Program program_;
+    std::shared_ptr<ShadowMaps> shadows_;
 };
 
 }  // namespace glimmer

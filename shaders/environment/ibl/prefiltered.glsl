@@ -1,4 +1,5 @@
-// IBL mode `prefiltered` (default): the split-sum baseline of common/ibl.glsl, one deterministic evaluation.
+// IBL mode `prefiltered` (default): the split-sum baseline of environment/prefiltered_lookup.glsl, one
+// deterministic evaluation.
 // Reflection probes (IblMode::readsProbes) replace the distant map where they cover the shaded point.
 // Environment glints (Kneiphof & Klein 2025; ibl.glint_levels): on glinty pixels of a method that defines
 // GLINT_ENVIRONMENT (deliot2023), the split-sum specular is multiplied by the method's glint attenuation for the
@@ -6,7 +7,6 @@
 // the sky only). Other methods get the smooth prefiltered lobe here and their glints from the lights.
 #include "lights/ltc.glsl"
 #include "environment/glint_levels.glsl"
-
 vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat3 worldToShading, vec3 diffuseAlbedo,
                  vec3 f0, bool glinty, uint sampleIndex) {
 #ifdef GLINT_ENVIRONMENT

@@ -5,7 +5,7 @@
 //   meso:  L = L^o / (a(A) sigma(Omega_o) N) * (particles in A)              (Eq. 18)
 //   macro: L = L^o / sigma(Omega_o)                                          (Eq. 18 with the count N a(A))
 // Needs the glint method wang2020 (its GlintPixel; the mode table enforces it); on non-glinty materials it is the
-// split-sum baseline (common/ibl.glsl). Diffuse: the SH irradiance (Sec. 5 "Other materials": a prefiltered map).
+// split-sum baseline (environment/prefiltered_lookup.glsl). Diffuse: the SH irradiance (Sec. 5 "Other materials": a prefiltered map).
 // Deviation: F by Schlick at n.o on the filtered radiance (the table has no F, see the prefilter's header).
 // Deterministic: one evaluation, sampleIndex unused (the prefilter already integrated the environment).
 #include "common/bindings.glsl"
@@ -86,8 +86,8 @@ vec3 iblRadiance(GlintPixel glint, GlintSurface s, vec3 wo, vec3 toEyeWorld, mat
         // (reflecting count) / (a(A) sigma N P^) with the count for acceptance probability P^.
         float factor = wangReflectingCount(glint, filteredP) / (glint.expected * sigmaO * filteredP);
         vec3 F = F_Schlick(f0, clamp(wo.z, 0.0, 1.0));
-        // To the post pass (lighting.frag GLINT_POST_PASS, which the method wang2020 always enables): the glint
-        // before occlusion and the visibility; the blurred visibility multiplies it there (Sec. 4.4).
+        // To the method's lighting targets (glints/wang2020/wang2020.glsl, which the lighting pass of wang2020 always
+        // has): the glint before occlusion and the visibility; the blurred visibility multiplies it there (Sec. 4.4).
         g_postEnvironmentGlint = wangGlintColor() * F * max(table.rgb, vec3(0.0)) * factor;
         g_postVisibility = wangDirectionalOcclusion(s.position, s.n, toEyeWorld);
         return envDiffuse(s.n) * diffuseAlbedo;

@@ -59,6 +59,34 @@ struct GlintPixel {
     int visits;            // nodes visited (cost, --aov extra)
 };
 
+// Lighting targets (shaders/glints/README.md; the table entry lists two, so the lighting program is compiled with
+// GLINT_METHOD_TARGETS): the light loop and the wang2020 IBL mode put the glint radiance here instead of into the
+// radiance; the method's passes blur the occlusion, multiply, blur the glints and add them (Sec. 4.4,
+// shaders/glints/wang2020/wang2020_glint_*.frag). The IBL mode sets the environment glint (before occlusion) and its
+// visibility along the mirror direction.
+#if defined(GLIMMER_LIGHTING_PASS) && defined(GLINT_METHOD_TARGETS)
+vec3 g_postEnvironmentGlint = vec3(0.0);
+float g_postVisibility = 1.0;
+vec3 g_wangLightGlints = vec3(0.0);
+layout(location = 2) out vec4 o_glintEnvironment;  // rgb: environment glints, a: visibility (glinty pixels)
+layout(location = 3) out vec4 o_glintLights;       // rgb: light glints, a: 1 on glinty pixels (occlusion-blur mask)
+
+bool glintTakeLightGlint(vec3 radiance) {
+    g_wangLightGlints += radiance;
+    return true;
+}
+void glintScaleTargets(float share) {
+    g_wangLightGlints *= share;
+    g_postEnvironmentGlint *= share;
+}
+void glintWriteTargets(bool glinty, bool finalView) {
+    bool postGlints = finalView && glinty;
+    o_glintEnvironment = postGlints ? vec4(finiteOrZero(g_postEnvironmentGlint), clamp(g_postVisibility, 0.0, 1.0))
+                                    : vec4(0.0);
+    o_glintLights = postGlints ? vec4(finiteOrZero(g_wangLightGlints), 1.0) : vec4(0.0);
+}
+#endif
+
 // PCG output permutation; identical to wang2020::pcgHash (engine/glints/wang2020/wang2020_quadtree.h).
 uint wangHash(uint v) {
     uint state = v * 747796405u + 2891336453u;

@@ -1,0 +1,29 @@
+// The reflection probes' place in the frame (render/probes/reflection_probes.h): prepare() captures and prefilters
+// them when something they see changed (listed as probes.capture and probes.prefilter in --stats and the window's
+// edit line) and publishes FrameResource::ReflectionProbes: the probes for IBL modes that read them
+// (IblMode::readsProbes) with probes.enabled, else a block with none. It draws nothing in the frame itself.
+#pragma once
+#include <filesystem>
+#include <memory>
+
+#include "render/frame/pass.h"
+#include "render/probes/reflection_probes.h"
+
+namespace glimmer {
+
+class ProbesPass : public Pass {
+public:
+    explicit ProbesPass(const std::filesystem::path& shaderRoot);
+    const char* name() const override { return "probes"; }
+    PassResources resources() const override { return {.writes = {FrameResource::ReflectionProbes}}; }
+    std::vector<gl::Program*> programs() override { return {}; }
+    void prepare(PrepareContext& context) override;
+    bool runs(const FrameContext&) const override { return false; }
+    void execute(const FrameContext&) override {}
+    const ReflectionProbes& probes() const { return probes_; }
+
+private:
+    ReflectionProbes probes_;
+};
+
+}  // namespace glimmer
