@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# GPU numbers in one command: builds Release, runs both paper suites (`glimmer bench --suite ...`, docs/bench.md)
+# GPU numbers in one command: builds Release, runs the paper suites (DB23 Table 1, Kemppinen Table 3, Kneiphof & Klein
+# 2024's area light against a directional light, Kneiphof & Klein 2025's environment glints) (`glimmer bench --suite ...`, docs/bench.md)
 # and the atrium with deliot2023 at every camera of its walkthrough path (content/atrium.json "walkthrough"), all
 # on the EGL device platform (engine/platform/egl_context.cpp picks an EGL device when the driver lists one) with
 # per-pass GL timer queries (`gpu_timer_ms`, meaningful on real GPUs) beside the glFinish wall clock, and writes
@@ -32,7 +33,7 @@ step "building Release in $build"
   cmake --build "$build" -j"$jobs" --target glimmer; } > "$out/log.txt" 2>&1 || fail "build"
 glimmer="$build/glimmer"
 
-for suite in deliot2023-table1 kemppinen2025-table3; do
+for suite in deliot2023-table1 kemppinen2025-table3 kk24-area-lights kk25-environment; do
   step "suite $suite at $size, $frames frames"
   "$glimmer" bench --suite "$suite" --backend egl --size "$size" --frames "$frames" --warmup "$warmup" \
       --json "$out/$suite.json" --markdown "$out/$suite.md" > /dev/null 2>> "$out/log.txt" || fail "suite $suite"
@@ -56,7 +57,7 @@ for c in cameras:
     atrium.append({"camera": c, "frame_ms": s["frame_ms"], "passes": s["passes"],
                    "triangles_drawn": s.get("gbuffer_draw", {}).get("triangles_drawn")})
 suites = {}
-for name in ("deliot2023-table1", "kemppinen2025-table3"):
+for name in ("deliot2023-table1", "kemppinen2025-table3", "kk24-area-lights", "kk25-environment"):
     suites[name] = json.load(open(os.path.join(out, name + ".json")))
 first = json.load(open(os.path.join(out, f"atrium_{cameras[0]}.json")))
 meta = {"gl_renderer": first["gl_renderer"], "gl_version": first["gl_version"],

@@ -31,7 +31,8 @@ map: gate = 1
 // glints (higher) and how abruptly they switch as h moves. angular_blend=bilinear gives deliot2023 exactly.
 //
 // Everything else is the built-in shader, included as a helper: its glintD is renamed out of the way and
-// replaced by the one below (the same loop with other weights). `resources: deliot2023` borrows the built-in's
+// replaced by the one below (the same loop with other weights). The built-in's area-light and environment glints
+// (Kneiphof & Klein 2024, 2025) come with it unchanged: they keep Eq. 14's bilinear weights. `resources: deliot2023` borrows the built-in's
 // random-number texture (Sec. 6.3), which its helpers read.
 #define glintD deliot2023GlintD
 #include "glints/deliot2023/deliot2023.glsl"
@@ -45,9 +46,10 @@ vec4 angularBlendWeights(vec2 f) {
 
 float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     g_deliotLightCalls += 1;
-    float R = P_MICROFACET_ROUGHNESS;
-    // Eq. 4: success probability p = R D(h) / D(n).
-    float p = clamp(R * D_smooth(h, s.alpha, s.ndf) / max(px.Dn, 1e-30), 0.0, 1.0);
+    // The built-in's success probability for this light (Kneiphof & Klein 2024's from the light's solid angle, or
+    // Eq. 4's p = R D(h) / D(n) with probability=db23, which this file leaves at the built-in's default).
+    float p = deliotProbability(px, s, h, g_glintLight.ndfIntegral);
+    if (!(p > 0.0)) return 0.0;
     // Eq. 14's grid of projected half vectors; the weights are the one change (angularBlendWeights).
     vec2 q = h.xy / px.angularCellSize - 0.5;
     vec2 qBase = floor(q);
@@ -55,7 +57,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     vec4 angularWeight = angularBlendWeights(q - qBase);
     float logMiss = deliotLogMiss(p);
     float count = 0.0;
-    for (int v = 0; v < DELIOT_VERTICES; ++v) {
+    for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
         // Eq. 10 + 18: the vertex's share of the footprint's facets, one gated binomial draw per angular cell.
         DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss, px.softGate);
         uvec4 packedPairs = deliotNoiseGather(px.texel[v], a0);
@@ -67,6 +69,6 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
         g_deliotEvaluations += 4;
         count += px.countWeight[v] * vertexCount;
     }
-    // Eq. 3-4: D_P = D(n) / R * count / N (the / N is in countWeight).
-    return px.Dn / R * count;
+    // Eq. 3-4: D_P = D(h) / p * count / N (the / N is in countWeight).
+    return D_smooth(h, s.alpha, s.ndf) / p * count;
 }

@@ -35,7 +35,8 @@ RenderRequest readCommonRenderOptions(ArgReader& args, const std::string& defaul
     }
     auto method = args.value("--method");
     request.settings.method = method ? resolveGlintMethod(*method) : (fileMethod.empty() ? defaultMethod : fileMethod);
-    request.settings.ibl = args.valueOr("--ibl", "prefiltered");
+    // Without --ibl a method with environment glints of its own (wang2020) draws them (GlintMethod::defaultIbl).
+    request.settings.ibl = args.valueOr("--ibl", defaultIblOf(findGlintMethod(request.settings.method)));
     checkIblModeMethod(findIblMode(request.settings.ibl), request.settings.method);
     for (const std::string& assignment : args.values("--set")) request.settings.apply(assignment);
     if (auto aov = args.value("--aov")) request.settings.debugView = findAov(*aov).viewId;

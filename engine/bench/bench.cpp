@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "glints/methods.h"
 #include "offscreen/offscreen.h"
 
@@ -36,6 +37,29 @@ const std::vector<BenchSuite>& benchSuites() {
          "",
          {},
          3},
+        // Issue 37's budgets (docs/area_lights.md): at most 1.3x each. Kneiphof & Klein 2024: one rect light against
+        // one directional light of about the same irradiance on plane90 (content/bench/).
+        {"kk24-area-lights",
+         "Kneiphof & Klein 2024: plane90 under its sun (a directional light) and under a rect light in its place "
+         "(content/bench/sun_plane.json, rect_plane.json), every method.",
+         {(defaultContentDir() / "bench" / "sun_plane.json").string(),
+          (defaultContentDir() / "bench" / "rect_plane.json").string()},
+         {{"", {}}},
+         "",
+         {},
+         0},
+        // Kneiphof & Klein 2025: the environment's glints off, with 4 and with 8 radiance levels (plane25: the sky
+        // fills the reflected lobe; the atrium: the court and the arcades with their probes).
+        {"kk25-environment",
+         "Kneiphof & Klein 2025: environment glints off, 4 and 8 radiance levels (ibl.glint_levels), on plane25 "
+         "and in the atrium.",
+         {"plane25", "atrium"},
+         {{"env glints off", {"ibl.glint_levels=off"}},
+          {"4 levels", {"ibl.glint_levels=4"}},
+          {"8 levels", {"ibl.glint_levels=8"}}},
+         "",
+         {},
+         0},
         // Issue 13's budget: TAA + exposure + bloom at most 15% of the atrium frame (docs/image.md).
         {"image-pipeline",
          "The image pipeline's cost: the same frames without (aa off, no bloom, manual exposure) and with TAA, "

@@ -30,7 +30,7 @@ struct BenchSuite {
     int lights = 0;                          // light.count; 0 keeps the scene's lights
 };
 
-// Built-in suites: deliot2023-table1, kemppinen2025-table3, image-pipeline.
+// Built-in suites: deliot2023-table1, kemppinen2025-table3, kk24-area-lights, kk25-environment, image-pipeline.
 const std::vector<BenchSuite>& benchSuites();
 // Throws UsageError naming --suite.
 const BenchSuite& findBenchSuite(const std::string& name);

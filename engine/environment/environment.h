@@ -111,6 +111,8 @@ public:
     GLuint specularFineArray() const { return specularFine_.id(); }
     GLuint brdfLut() const { return brdfLut_.id(); }
     const std::array<glm::vec3, 9>& irradianceSh() const { return sh_; }
+    // Identifies the active maps: changes whenever they are rebuilt (data derived from them key on it).
+    const std::string& key() const { return activeKey_; }
 
 private:
     // The disk cache key's parameters for `spec` ("" = do not cache: turned off, `none`, unreadable file).

@@ -54,7 +54,22 @@ static GlintMethod deliot2023Method() {
               "exact (inverse CDF, Giles' erfinv, as the authors' code)",
               {"irwin_hall", "exact"}},
              {"max_ratio", 0.0f, 0.0f, 1000.0f,
-              "clamp of D_P / D(n) (authors' code: 20, 'grazing angle extremities'); 0 = none"}},
+              "clamp of D_P / D(n) (authors' code: 20, 'grazing angle extremities'); 0 = none"},
+             // Kneiphof & Klein 2024 (glints under area lights; shaders/glints/deliot2023.glsl, docs/area_lights.md).
+             {"probability", 0.0f, 0.0f, 1.0f,
+              "facet success probability: kk24 = the facets whose mirror direction hits the light, from its solid "
+              "angle or LTC integral over the total NDF (Kneiphof & Klein 2024); db23 = Eq. 4's R D(h) / D(n)",
+              {"kk24", "db23"}},
+             {"total_ndf", 0.0f, 0.0f, 1.0f,
+              "kk24's denominator, the integral of D over the hemisphere: fit = 1 + alpha^1.4109 (their GGX fit; "
+              "Beckmann always exact); exact", {"fit", "exact"}},
+             {"light_integral", 0.0f, 0.0f, 1.0f,
+              "kk24 under area lights: the NDF-only term times the specular LTC's integral (their default) or the "
+              "dedicated NDF-only LTC's", {"specular_ltc", "ndf_ltc"}},
+             {"facets", 0.0f, 0.0f, 1.0f,
+              "kk24: cone = facets reflect within pi alpha^2 R steradians, widened by the light (ours; punctual "
+              "lights keep their glints); mirror = the paper's mirror facets (a light without size shows none)",
+              {"cone", "mirror"}}},
             createDeliot2023Resources};
     method.materialMapping = {
         {"log_density", GlintQuantity::Density, kDeliotPhysicalDensityScale, 1.0f, 0.0f, true,
@@ -75,6 +90,7 @@ static GlintMethod deliot2023Method() {
          "Eq. 2-4: a facet reflects h with p = R D(h) / D(n); a cone of half-angle gamma holds p = pi gamma^2 D(h) "
          "(h.n), and D(n) = 1 / (pi alpha^2) (GGX, Beckmann), so R = (gamma / alpha)^2 at h = n"}};
     method.convergence = {{"log_density", 40.0f}};   // Sec. 3, Fig. 13: e^40 facets per unit UV area is the smooth NDF
+    method.environmentGlints = true;   // Kneiphof & Klein 2025 (glintEnvironmentFactor)
     return method;
 }
 
@@ -186,6 +202,7 @@ static GlintMethod wang2020Method() {
     // Sec. 4.4: the lighting pass leaves the glints to the post pass. RGBA32F: a micro-scale glint can exceed
     // half-float range (one particle's radiance over a whole footprint).
     method.lightingTargets = {{"wang2020 environment glints", GL_RGBA32F}, {"wang2020 light glints", GL_RGBA32F}};
+    method.defaultIbl = "wang2020";   // Sec. 4: its own environment glints (the IBL mode of the same name)
     method.createPasses = glintpost::createPasses;
     // N, gamma and roughness shape the quadtree and the DPF tables, built once for the densest glinty material;
     // the others thin its particles (shaders/glints/wang2020/wang2020.glsl) and share its gamma and tabulated roughness.

@@ -95,6 +95,12 @@ struct GlintMethod {
     // covariance, which the lighting pass hands to the method (GlintSurface::slopeCovariance, GLINT_SLOPE_COVARIANCE;
     // texture unit UNIT_GBUFFER_SLOPE_COVARIANCE must stay free of the method's resources).
     bool slopeCovariance = false;
+    // The method draws glints from the environment (its shader defines GLINT_ENVIRONMENT; Kneiphof & Klein 2025):
+    // the renderer builds the environment's radiance levels for it (environment/environment_glints.h).
+    bool environmentGlints = false;
+    // The IBL mode the method uses unless --ibl (or the panel) names one: a method with environment glints of its
+    // own (wang2020) draws them by default. Empty: "prefiltered".
+    std::string defaultIbl;
     // How the glint material (scene.h GlintMaterial) sets this method's parameters per material (glint_mapping.h);
     // parameters without a mapping keep their default unless --set. Each row cites the paper's definition.
     std::vector<ParamMapping> materialMapping;
@@ -111,6 +117,11 @@ struct GlintMethod {
     std::string resourcesFrom;
     bool isUserMethod() const { return !sourceFile.empty(); }
 };
+
+// The IBL mode `method` runs with unless one is named: its defaultIbl, else "prefiltered".
+inline std::string defaultIblOf(const GlintMethod& method) {
+    return method.defaultIbl.empty() ? std::string("prefiltered") : method.defaultIbl;
+}
 
 // The built-ins, then the user methods in the order they were registered. References stay valid only until the
 // next registerGlintMethod (look methods up again after loading a method file).

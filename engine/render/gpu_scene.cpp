@@ -159,6 +159,39 @@ GpuScene::GpuScene(const Scene& scene) {
     updateMaterialsAndLights(scene);
 }
 
+GpuLight gpuLight(const Light& l) {
+    // KHR_lights_punctual's spot falloff as scale and offset of cos(angle) (scene/light_falloff.cpp).
+    float scale = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
+    GpuLight g{{l.vector, float(int(l.type))}, {l.color, l.intensity}, {l.spotDirection, scale},
+               {-std::cos(l.outerConeAngle) * scale, l.range, 0.0f, l.intensity}, {0.0f, 0.0f, 0.0f, 0.0f},
+               {0.0f, 0.0f, 0.0f, 0.0f}};
+    constexpr float kPi = 3.14159265f;
+    if (l.type == LightType::Directional) {
+        // Solid angle of the sun's disk: 2 pi (1 - cos(diameter / 2)) = 4 pi sin^2(diameter / 4) (1 - cos loses its
+        // digits in float at the sun's 0.53 degrees).
+        float s = std::sin(0.25f * l.angularDiameter);
+        g.spotOffsetRange.z = 4.0f * kPi * s * s;
+    } else if (!l.isArea()) {
+        g.spotOffsetRange.z = l.radius;
+    } else {
+        g.colorIntensity.w = l.radianceScale();
+        g.spotOffsetRange.z = std::sqrt(std::max(l.area(), 0.0f) / (l.type == LightType::Sphere ? 4.0f * kPi : kPi));
+        glm::vec3 normal = glm::normalize(l.spotDirection);
+        glm::vec3 right = glm::normalize(l.right - normal * glm::dot(normal, l.right));
+        glm::vec3 up = glm::cross(normal, right);   // cross(right, up) = normal: the front
+        if (l.type == LightType::Rect) {
+            g.areaU = {right * (0.5f * l.width), l.twoSided ? 1.0f : 0.0f};
+            g.areaV = {up * (0.5f * l.height), 0.0f};
+        } else if (l.type == LightType::Disk) {
+            g.areaU = {right * l.radius, l.twoSided ? 1.0f : 0.0f};
+            g.areaV = {up * l.radius, l.radius};
+        } else {
+            g.areaV = {0.0f, 0.0f, 0.0f, l.radius};
+        }
+    }
+    return g;
+}
+
 void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     std::vector<GpuMaterial> materials;
     for (const Material& m : scene.materials)
@@ -167,11 +200,11 @@ void GpuScene::updateMaterialsAndLights(const Scene& scene) {
     if (materials.empty()) materials.push_back({});
     materials_ = gl::createBuffer(GLsizeiptr(materials.size() * sizeof(GpuMaterial)), materials.data(), 0);
     std::vector<GpuLight> lights;
-    for (const Light& l : scene.lights) {
-        // KHR_lights_punctual's spot falloff as scale and offset of cos(angle) (scene/light_falloff.cpp).
-        float scale = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
-        lights.push_back({{l.vector, float(int(l.type))}, {l.color, l.intensity}, {l.spotDirection, scale},
-                          {-std::cos(l.outerConeAngle) * scale, l.range, 0.0f, 0.0f}});
+    areaLightCount_ = 0;
+    for (size_t index : gpuLightOrder(scene.lights)) {
+        const Light& l = scene.lights[index];
+        lights.push_back(gpuLight(l));
+        areaLightCount_ += l.isArea() ? 1 : 0;
     }
     lightCount_ = int(lights.size());
     if (lights.empty()) lights.push_back({});

@@ -9,6 +9,7 @@
 
 #include "gl/handles.h"
 #include "render/mesh_chunks.h"
+#include "render/shader_interface.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -31,6 +32,9 @@ struct LodView {
 // (an error e at distance d covers about e / d x heightPixels / (2 tan(fov / 2)) pixels). 0: full detail.
 LodView lodViewFor(const Camera& camera, int heightPixels, float maxPixelError);
 
+// A light as the shaders read it (shaders/common/frame.glsl GpuLight).
+GpuLight gpuLight(const Light& light);
+
 class GpuScene {
 public:
     explicit GpuScene(const Scene& scene);
@@ -50,6 +54,8 @@ public:
     bool hasBlended() const { return hasBlended_; }
     bool hasOpaqueEmissive() const { return hasOpaqueEmissive_; }
     int lightCount() const { return lightCount_; }
+    // The last areaLightCount() of the lightCount() GPU lights are area lights (scene.h gpuLightOrder).
+    int areaLightCount() const { return areaLightCount_; }
     // GL_TEXTURE_MAX_ANISOTROPY of the mipmapped linear material textures (texture_anisotropy); a no-op when
     // unchanged, so the renderer calls it every frame.
     void setTextureAnisotropy(float maxAnisotropy) const;
@@ -92,7 +98,7 @@ private:
     std::vector<bool> anisotropic_;            // per texture: mipmapped and linear (anisotropy applies)
     mutable float textureAnisotropy_ = 16.0f;  // GL texture state, set through a const scene
     gl::Buffer materials_, lights_;
-    int lightCount_ = 0;
+    int lightCount_ = 0, areaLightCount_ = 0;
     bool hasBlended_ = false, hasOpaqueEmissive_ = false;
     uint64_t serial_ = 0;
     mutable DrawStats drawStats_;

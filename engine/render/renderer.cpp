@@ -14,6 +14,7 @@
 #include "render/forward/emissive_pass.h"
 #include "render/forward/forward_target.h"
 #include "render/forward/transparent_pass.h"
+#include "render/frame/environment_glints_pass.h"
 #include "render/frame/gbuffer_pass.h"
 #include "render/frame/lighting_pass.h"
 #include "render/frame/method_pass_host.h"
@@ -72,6 +73,7 @@ void Renderer::buildFrameList() {
     add(std::make_unique<ShadowMapPass>(root, ShadowArray::Sun, shadowMaps_));    // its prepare() fits every view
     add(std::make_unique<ShadowMapPass>(root, ShadowArray::Local, shadowMaps_));
     ProbesPass* probes = add(std::make_unique<ProbesPass>(root));                 // captures on demand
+    add(std::make_unique<EnvironmentGlintsPass>(root));   // environment glints' levels on demand (after the probes)
     add(std::make_unique<GBufferPass>(root));
     add(std::make_unique<GtaoPass>(root, ambientOcclusion_));                     // sky bake on demand
     add(std::make_unique<AoResolvePass>(root, ambientOcclusion_));
@@ -229,7 +231,7 @@ void Renderer::uploadFrameUniforms(const Scene& scene, const GpuScene& gpuScene,
     uniforms.skyColor = glm::vec4(scene.skyColor, 1.0f);
     uniforms.viewport = {view.width, view.height, int(frameIndex_), settings_.debugView};
     uniforms.exposure = {std::exp2(settings_.value(param::exposure)), float(gpuScene.lightCount()),
-                         settings_.value(param::ambient), 0.0f};
+                         settings_.value(param::ambient), float(gpuScene.areaLightCount())};
     uniforms.sample = {accumulating() ? view.sampleIndex : 0u, 0u, 0u, 0u};
     glNamedBufferSubData(frameUniforms_.id(), 0, sizeof(uniforms), &uniforms);
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_FRAME, frameUniforms_.id());

@@ -22,6 +22,11 @@ const std::vector<CommonParam>& commonParams() {
           "number of lights: 0 keeps the scene's; more adds lights around the first one's direction", {}, true}},
         {{"light.turn", 0.0f, -360.0f, 360.0f,
           "turns every light about the world's +y axis through the origin, degrees (glint lifespan measurements)"}},
+        {{"light.sun_diameter", 0.53f, 0.0f, 10.0f,
+          "angular diameter (degrees) of every directional light: the solid angle its glints count against"}, true},
+        {{"light.area_size", 1.0f, 0.1f, 10.0f,
+          "scale of every area light's size (rect width and height, disk and sphere radius) at equal intensity"}},
+        {{"light.area_intensity", 1.0f, 0.0f, 100.0f, "multiplier on every area light's intensity"}},
         {{"material.alpha", 0.3f, 0.001f, 1.0f, "NDF roughness alpha of every material"}, true},
         {{"material.metallic", 1.0f, 0.0f, 1.0f, "metalness of every material"}, true},
         {{"material.ndf", 0.0f, 0.0f, 1.0f, "microfacet distribution of every material", {"ggx", "beckmann"}}, true},
@@ -213,7 +218,18 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
             m.clearcoatRoughness = settings.value(param::material_clearcoat_roughness);
     }
     float scale = settings.value(param::light_intensity);
-    for (Light& light : scene.lights) light.intensity *= scale;
+    const float areaSize = settings.value(param::light_area_size), areaIntensity = settings.value(param::light_area_intensity);
+    for (Light& light : scene.lights) {
+        light.intensity *= scale;
+        if (light.type == LightType::Directional && settings.isSet(param::light_sun_diameter))
+            light.angularDiameter = glm::radians(settings.value(param::light_sun_diameter));
+        if (light.isArea()) {
+            light.intensity *= areaIntensity;
+            light.width *= areaSize;
+            light.height *= areaSize;
+            light.radius *= areaSize;
+        }
+    }
     int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
@@ -238,6 +254,7 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
         for (Light& light : scene.lights) {
             light.vector = rotate(light.vector);
             light.spotDirection = rotate(light.spotDirection);
+            light.right = rotate(light.right);   // an area light's width axis
         }
     }
 }

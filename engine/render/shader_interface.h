@@ -13,18 +13,21 @@ struct FrameUniforms {          // std140, binding 0
     glm::vec4 cameraPosition;
     glm::vec4 skyColor;
     glm::ivec4 viewport;        // width, height, frame index, debug view
-    glm::vec4 exposure;         // exposure multiplier, light count, ambient scale, unused
+    glm::vec4 exposure;         // exposure multiplier, light count, ambient scale, area lights (the last ones)
     glm::uvec4 sample;          // accumulation sample index, unused x3 (see Renderer::setSampleIndex)
     glm::vec4 jitter;           // TAA jitter in pixels (xy), glints at the unjittered centre (z = 1), unused
 };
 static_assert(sizeof(FrameUniforms) == 4 * 64 + 6 * 16);
 
-struct GpuLight {               // std430, binding 1
+struct GpuLight {               // std430, binding 1 (fields: shaders/common/frame.glsl)
     glm::vec4 vectorType;
     glm::vec4 colorIntensity;
     glm::vec4 spotAxisScale;
     glm::vec4 spotOffsetRange;
+    glm::vec4 areaU;
+    glm::vec4 areaV;
 };
+static_assert(sizeof(GpuLight) == 6 * 16);
 
 struct GpuMaterial {            // std430, binding 2
     glm::vec4 baseColor;

@@ -29,7 +29,7 @@ const std::set<std::string>& unwrappedKeys() {
 const std::set<std::string>& understoodExtensions() {
     static const std::set<std::string> names = {"GLIMMER_materials_glint", "KHR_materials_clearcoat",
                                                 "KHR_materials_emissive_strength", "KHR_texture_transform",
-                                                "KHR_lights_punctual"};
+                                                "KHR_lights_punctual", "GLIMMER_lights_area"};
     return names;
 }
 

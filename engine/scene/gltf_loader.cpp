@@ -22,6 +22,7 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "scene/gltf_area_lights.h"
 #include "scene/gltf_glint_material.h"
 #include "scene/gltf_json.h"
 #include "scene/scene_limits.h"
@@ -43,7 +44,8 @@ enum class ExtensionSupport { Supported, Ignored, Refused };
 ExtensionSupport extensionSupport(const std::string& name) {
     static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_mesh_quantization",
                                                     "KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                                    "KHR_materials_clearcoat", "GLIMMER_materials_glint"};
+                                                    "KHR_materials_clearcoat", "GLIMMER_materials_glint",
+                                                    "GLIMMER_lights_area"};
     static const std::set<std::string> refused = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                   "KHR_meshopt_compression"};
     if (supported.count(name)) return ExtensionSupport::Supported;
@@ -743,6 +745,7 @@ private:
     }
 
     void walkNodes() {
+        areaLights_ = readAreaLights(json_, file_);   // GLIMMER_lights_area: bad values are one-line errors
         // The default scene (or scene 0); a file without scenes shows every mesh once at the origin.
         // Nodes may share children (a DAG is legal glTF), so the number of paths, not of nodes, bounds the work:
         // visits and instances are counted against kMaxInstances as they are made.
@@ -783,6 +786,8 @@ private:
                     warnings_.add("node " + std::to_string(nodeIndex) + " has a singular or non-finite transform (zero scale); its light is skipped");
                 }
             }
+            if (std::optional<int> light = nodeAreaLight(jsonElement(rawNodes_, size_t(nodeIndex)), nodeIndex, file_))
+                gltfLights_.push_back(placeAreaLight(areaLights_, *light, world, file_));
             for (int child : node.children) visit(child, world, depth + 1);
             onPath[size_t(nodeIndex)] = false;
         };
@@ -910,6 +915,7 @@ private:
     std::vector<Camera> gltfCameras_;
     std::vector<std::string> gltfCameraKeys_;   // "<file>: cameras[i].perspective.znear" of each, for messages
     std::vector<Light> gltfLights_;
+    std::vector<Light> areaLights_;   // GLIMMER_lights_area's list, placed by the nodes that refer to them
     std::vector<std::pair<std::string, std::string>> imageFileProblems_;
     int defaultMaterial_ = -1;
     uint64_t totalVertices_ = 0, totalIndices_ = 0, skippedInstances_ = 0;

@@ -109,20 +109,44 @@ inline std::array<int*, 9> materialTextureSlots(Material& m) {
             &m.emissiveTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture};
 }
 
-enum class LightType : int { Directional = 0, Point = 1, Spot = 2 };
+enum class LightType : int { Directional = 0, Point = 1, Spot = 2, Rect = 3, Disk = 4, Sphere = 5 };
 
-// Punctual lights (KHR_lights_punctual semantics). The lighting pass computes each light's irradiance at normal
-// incidence (intensity / d^2 x range window x cone falloff); a per-light visibility (shadows) multiplies it.
+// The sun's angular diameter (0.53 degrees), the default of every directional light.
+constexpr float kSunAngularDiameter = 0.0092502f;
+
+// Punctual lights (KHR_lights_punctual semantics) and area lights (rect, disk, sphere; shaded by linearly
+// transformed cosines, engine/render/lights/). The lighting pass computes each punctual light's irradiance at normal
+// incidence (intensity / d^2 x range window x cone falloff) and each area light's LTC integrals; a per-light
+// visibility (shadows) multiplies either.
+// Units (linear colour x intensity, per unit of the renderer's radiance): directional: irradiance at normal
+// incidence (lux for photometric scenes); point, spot: intensity (candela); rect, disk: intensity along the normal
+// (candela), so radiance = intensity / area and, seen from afar, the light equals a point light of that intensity
+// times the cosine to its normal; sphere: intensity in every direction (candela), radiance = intensity / (pi r^2).
 struct Light {
     LightType type = LightType::Directional;
-    glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction towards the light; point, spot: position
+    glm::vec3 vector{0.0f, 1.0f, 0.0f};  // directional: unit direction towards the light; others: position / centre
     glm::vec3 color{1.0f};
-    float intensity = 1.0f;               // directional: irradiance at normal incidence; point, spot: intensity / sr
-    glm::vec3 spotDirection{0.0f, -1.0f, 0.0f};  // spot: unit direction the light shines along
+    float intensity = 1.0f;               // see the units above
+    glm::vec3 spotDirection{0.0f, -1.0f, 0.0f};  // spot: unit direction it shines along; rect, disk: its normal (front)
     float innerConeAngle = 0.0f;          // spot: radians, full intensity inside
     float outerConeAngle = 0.7853982f;    // spot: radians, zero outside (KHR_lights_punctual defaults)
-    float range = 0.0f;                   // point, spot: > 0 fades the light to zero at this distance; 0 = infinite
+    float range = 0.0f;                   // point, spot, area: > 0 fades the light to zero at this distance; 0 = infinite
+    // Size, which makes every light one of a solid angle (Kneiphof & Klein 2024: glints count the facets that see it):
+    float angularDiameter = kSunAngularDiameter;   // directional: radians
+    float radius = 0.0f;                  // point, spot: metres (0 = punctual); disk, sphere: metres
+    glm::vec3 right{1.0f, 0.0f, 0.0f};    // rect, disk: unit axis of the width, orthogonal to spotDirection
+    float width = 1.0f, height = 1.0f;    // rect: metres along right and along cross(spotDirection, right)
+    bool twoSided = false;                // rect, disk: emits from both faces
+    bool isArea() const { return type == LightType::Rect || type == LightType::Disk || type == LightType::Sphere; }
+    // Emitting area in square metres (area lights), and the resulting radiance scale (intensity / area for rect and
+    // disk, intensity / (pi r^2) for spheres).
+    float area() const;
+    float radianceScale() const;
 };
+
+// The order in which lights reach the GPU (render/gpu_scene.cpp, render/shadow_maps.cpp): the punctual lights in
+// scene order, then the area lights in scene order (the lighting pass loops over each kind separately).
+std::vector<size_t> gpuLightOrder(const std::vector<Light>& lights);
 
 // KHR_lights_punctual's spot falloff: t = clamp((cos(angle to the axis) - cos outer) / (cos inner - cos outer)),
 // attenuation t^2 (the extension's recommended smooth falloff). Shared with lighting.frag (tests compare them).

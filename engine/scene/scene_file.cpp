@@ -204,8 +204,10 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
                            "alphaCutoff", "doubleSided", "baseColorTexture", "metallicRoughnessTexture", "normalTexture",
                            "occlusionTexture", "glintMaskTexture", "uvScale", "uvOffset", "uvRotationDegrees", "glint",
                            "clearcoat", "clearcoatRoughness", "clearcoatTexture", "clearcoatRoughnessTexture",
-                           "clearcoatNormalTexture"});
+                           "clearcoatNormalTexture", "emissive"});
     if (o.contains("baseColor")) m.baseColor = r.colour(o["baseColor"], where + ".baseColor");
+    // Emitted radiance (linear RGB, the renderer's radiance units): the visible face of an area light, for example.
+    if (o.contains("emissive")) m.emissive = glm::vec3(r.colour(o["emissive"], where + ".emissive", 1e6f));
     if (o.contains("alpha") && o.contains("roughness")) r.fail(where, "give either alpha or roughness, not both");
     m.alpha = r.number(o, "alpha", where, m.alpha, 1e-3f, 1.0f);
     if (o.contains("roughness")) {
@@ -259,36 +261,87 @@ void readMaterial(Scene& scene, const Reader& r, const Json& o, const std::strin
     }
 }
 
+// A unit direction, not zero, from `key`.
+glm::vec3 readDirection(const Reader& r, const Json& o, const char* key, const std::string& where) {
+    glm::vec3 d = r.vec<3>(o[key], where + "." + key);
+    if (glm::length(d) < 1e-6f) r.fail(where + "." + key, "must not be zero");
+    return glm::normalize(d);
+}
+
 Light readLight(const Reader& r, const Json& o, const std::string& where) {
     r.checkKeys(o, where, {"type", "direction", "position", "color", "intensity", "range", "innerConeAngle",
-                           "outerConeAngle"});
+                           "outerConeAngle", "angularDiameterDegrees", "radius", "right", "width", "height",
+                           "twoSided"});
     Light light;
     std::string type = r.string(o, "type", where, "directional");
+    // Keys that only some types take: a one-line error instead of a silently ignored value.
+    auto only = [&](const char* key, std::initializer_list<const char*> types) {
+        if (!o.contains(key)) return;
+        for (const char* t : types)
+            if (type == t) return;
+        std::string list;
+        for (const char* t : types) list += (list.empty() ? "" : ", ") + std::string(t);
+        r.fail(where + "." + key, "does not apply to a " + type + " light (only " + list + ")");
+    };
+    only("angularDiameterDegrees", {"directional"});
+    only("radius", {"point", "spot", "disk", "sphere"});
+    only("right", {"rect", "disk"});
+    only("width", {"rect"});
+    only("height", {"rect"});
+    only("twoSided", {"rect", "disk"});
+    only("innerConeAngle", {"spot"});
+    only("outerConeAngle", {"spot"});
     if (type == "directional") {
         light.type = LightType::Directional;
         if (!o.contains("direction")) r.fail(where, "a directional light needs \"direction\" (towards the light)");
-        glm::vec3 d = r.vec<3>(o["direction"], where + ".direction");
-        if (glm::length(d) < 1e-6f) r.fail(where + ".direction", "must not be zero");
-        light.vector = glm::normalize(d);
+        light.vector = readDirection(r, o, "direction", where);
+        // The sun's disk: its solid angle is what the glints of Kneiphof & Klein 2024 count against.
+        light.angularDiameter = glm::radians(r.number(o, "angularDiameterDegrees", where, 0.53f, 0.0f, 90.0f));
     } else if (type == "point") {
         light.type = LightType::Point;
         if (!o.contains("position")) r.fail(where, "a point light needs \"position\"");
         light.vector = r.position(o["position"], where + ".position");
+        light.radius = r.number(o, "radius", where, 0.0f, 0.0f, 1e3f);
     } else if (type == "spot") {
         // KHR_lights_punctual's spot: cone angles in radians about `direction` (the way the light shines).
         light.type = LightType::Spot;
         if (!o.contains("position") || !o.contains("direction"))
             r.fail(where, "a spot light needs \"position\" and \"direction\" (the way it shines)");
         light.vector = r.position(o["position"], where + ".position");
-        glm::vec3 d = r.vec<3>(o["direction"], where + ".direction");
-        if (glm::length(d) < 1e-6f) r.fail(where + ".direction", "must not be zero");
-        light.spotDirection = glm::normalize(d);
+        light.spotDirection = readDirection(r, o, "direction", where);
         light.outerConeAngle = r.number(o, "outerConeAngle", where, light.outerConeAngle, 1e-4f, 1.5707964f);
         light.innerConeAngle = r.number(o, "innerConeAngle", where, 0.0f, 0.0f, 1.5707964f);
         if (!(light.innerConeAngle < light.outerConeAngle))
             r.fail(where + ".innerConeAngle", "must be smaller than outerConeAngle");
+        light.radius = r.number(o, "radius", where, 0.0f, 0.0f, 1e3f);
+    } else if (type == "rect" || type == "disk" || type == "sphere") {
+        // Area lights (docs/area_lights.md): a centre, a size in metres; rects and disks face `direction` (the way
+        // they shine), with the width along `right`.
+        light.type = type == "rect" ? LightType::Rect : type == "disk" ? LightType::Disk : LightType::Sphere;
+        if (!o.contains("position")) r.fail(where, "a " + type + " light needs \"position\" (its centre)");
+        light.vector = r.position(o["position"], where + ".position");
+        if (type != "sphere") {
+            if (!o.contains("direction")) r.fail(where, "a " + type + " light needs \"direction\" (the way it shines)");
+            light.spotDirection = readDirection(r, o, "direction", where);
+            glm::vec3 right = o.contains("right") ? readDirection(r, o, "right", where)
+                              : std::abs(light.spotDirection.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f)
+                                                                        : glm::vec3(1.0f, 0.0f, 0.0f);
+            if (!o.contains("right")) right = glm::cross(right, light.spotDirection);   // horizontal when possible
+            right -= light.spotDirection * glm::dot(light.spotDirection, right);
+            if (glm::length(right) < 1e-3f) r.fail(where + ".right", "must not be parallel to direction");
+            light.right = glm::normalize(right);
+            light.twoSided = r.boolean(o, "twoSided", where, false);
+        }
+        if (type == "rect") {
+            if (!o.contains("width") || !o.contains("height")) r.fail(where, "a rect light needs \"width\" and \"height\" (metres)");
+            light.width = r.number(o, "width", where, 1.0f, 1e-4f, 1e4f);
+            light.height = r.number(o, "height", where, 1.0f, 1e-4f, 1e4f);
+        } else {
+            if (!o.contains("radius")) r.fail(where, "a " + type + " light needs \"radius\" (metres)");
+            light.radius = r.number(o, "radius", where, 1.0f, 1e-4f, 1e4f);
+        }
     } else {
-        r.fail(where + ".type", "expected \"directional\", \"point\" or \"spot\"");
+        r.fail(where + ".type", "expected \"directional\", \"point\", \"spot\", \"rect\", \"disk\" or \"sphere\"");
     }
     if (type != "directional") light.range = r.number(o, "range", where, 0.0f, 0.0f, 1e7f);
     if (o.contains("color")) light.color = glm::vec3(r.colour(o["color"], where + ".color", 1e6f));
@@ -361,6 +414,9 @@ void mergeModel(Scene& scene, const Reader& r, const Json& o, const std::string&
             } else {
                 light.vector = glm::vec3(transform * glm::vec4(light.vector, 1.0f));
                 light.spotDirection = glm::normalize(glm::vec3(transform * glm::vec4(light.spotDirection, 0.0f)));
+                glm::vec3 right = glm::vec3(transform * glm::vec4(light.right, 0.0f));
+                right -= light.spotDirection * glm::dot(light.spotDirection, right);
+                if (glm::length(right) > 1e-6f) light.right = glm::normalize(right);
             }
             scene.lights.push_back(light);
             modelLights.push_back(light);

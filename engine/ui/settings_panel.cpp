@@ -108,6 +108,10 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
     }
     if (ui.section("Method (M)", true)) {
         if (!ids.empty() && ui.selector("method", ids, methodIndex)) {
+            // The IBL mode follows the method's default while it is the previous method's (GlintMethod::defaultIbl):
+            // selecting wang2020 turns on its environment glints, leaving it turns them off again.
+            if (settings.ibl == defaultIblOf(findGlintMethod(settings.method)))
+                settings.ibl = defaultIblOf(methods[size_t(methodIndex)]);
             settings.method = ids[size_t(methodIndex)];
             result.settingsChanged = result.methodChanged = true;
         }

@@ -15,6 +15,7 @@
 #define BINDING_EXPOSURE_STATE 6     // storage: metered and target EV (exposure pass -> tone-mapping pass)
 #define BINDING_PROBES 6             // uniform (not the storage 6 above) ProbeBlock (environment/prefiltered_lookup.glsl; C++ ProbeUniforms, render/probes/reflection_probes.h)
 #define BINDING_ENVIRONMENT 7        // uniform EnvironmentBlock (environment/prefiltered_lookup.glsl)
+#define BINDING_ENV_GLINTS 7         // storage (not the uniform 7 above): environment glint levels (environment/glint_levels.glsl)
 #define BINDING_METHOD_FIRST 8       // glint methods: 8..15
 #define BINDING_METHOD_LAST 15
 #define BINDING_IBL_FIRST 16         // IBL modes: 16..23
@@ -45,6 +46,12 @@
 #define UNIT_SHADOW_SUN 28           // sampler2DArrayShadow: sun cascades (render/shadows/shadow_maps.h)
 #define UNIT_SHADOW_LOCAL 29         // sampler2DArrayShadow: point-light cube faces and spot-light views
 #define UNIT_SHADOW_MASK 31          // sampler2DArray: shadowed lights' visibility, 4 a layer (passes/shadow_mask_pass.h)
+// Units 32 and up (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS is 192 on llvmpipe; a stage still reads at most 32 samplers).
+#define UNIT_LTC_TABLE 32            // sampler2DArray: the area lights' LTC tables (render/lights/ltc_texture.h)
+#define UNIT_SHADOW_LOCAL_DEPTH 33   // sampler2DArray: the local-light depth array without compare (soft shadows)
+#define UNIT_ENV_GLINT_WEIGHTS 34    // samplerCubeArray: the environment's prefiltered glint-level weights (KK25)
+#define UNIT_PROBE_GLINT_WEIGHTS 35  // samplerCubeArray: the reflection probes' ones
+#define UNIT_GLINT_LEVEL_SOURCE 0    // compute passes of engine/environment/environment_glints.cpp: their source
 
 // Texture units of the G-buffer pass (the material's textures, bound per draw by GpuScene).
 #define UNIT_MATERIAL_BASE_COLOR 0

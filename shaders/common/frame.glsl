@@ -8,19 +8,25 @@ layout(std140, binding = BINDING_FRAME) uniform FrameBlock {
     vec4 u_cameraPosition;   // xyz
     vec4 u_skyColor;         // rgb: background and constant ambient radiance when no environment map is bound
     ivec4 u_viewport;        // width, height, frame index, debug view (AOV id)
-    vec4 u_exposure;         // x: exposure multiplier (2^EV), y: light count, z: ambient scale, w: unused
+    vec4 u_exposure;         // x: exposure multiplier (2^EV), y: light count, z: ambient scale, w: area lights (the
+                             // last w of the y lights; the punctual ones come first)
     uvec4 u_sample;          // x: accumulation sample index (0 = first estimate of this view; IBL modes)
     vec4 u_jitter;           // xy: TAA sub-pixel jitter of this frame in pixels; z: 1 when glints are evaluated
                              // at the unjittered pixel centre (taa.stable_glints; docs/image.md)
 };
 
 // Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position),
-// 2 spot (position; KHR_lights_punctual cone).
+// 2 spot (position; KHR_lights_punctual cone), 3 rect, 4 disk, 5 sphere (vector = centre; lights/area_light.glsl).
+// GpuScene uploads the punctual lights (0-2) first, then the area lights (u_exposure.w of them).
 struct GpuLight {
     vec4 vectorType;         // xyz vector, w type
-    vec4 colorIntensity;     // rgb colour, a intensity
+    vec4 colorIntensity;     // rgb colour, a intensity (area lights: their radiance, intensity / area)
     vec4 spotAxisScale;      // spot: xyz unit direction the light shines along, w 1 / max(0.001, cos inner - cos outer)
-    vec4 spotOffsetRange;    // x spot: -cos(outer) * scale; y range (0 = infinite)
+    vec4 spotOffsetRange;    // x spot: -cos(outer) * scale; y range (0 = infinite); z size: directional: solid angle
+                             // (sr), point and spot: radius (m), area lights: radius of a disk of their area (soft
+                             // shadows); w intensity (area lights: as a point light of it seen from afar)
+    vec4 areaU;              // rect: xyz half-extent along the width; disk: radius x width axis; w 1 when two-sided
+    vec4 areaV;              // rect: half-extent along the height; disk: radius x height axis; sphere: w radius
 };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBlock { GpuLight u_lights[]; };
 

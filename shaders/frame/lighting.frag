@@ -14,6 +14,8 @@
 #include "common/light_incidence.glsl"
 #include "common/plane_aware_upsample.glsl"
 #include "frame/method_output_check.glsl"
+#include "lights/ltc.glsl"
+#include "lights/area_light.glsl"
 #ifdef SHADOWS
 #include "shadows/shadows.glsl"
 #endif
@@ -119,6 +121,33 @@ void glintSurfaceDerivatives(inout GlintSurface s, ivec2 pixel, vec3 gbufferPosi
     }
 }
 #endif
+// Solid angle (sr) of a punctual or directional light seen from `position` (Kneiphof & Klein 2024: every light has
+// one): the sun's disk (spotOffsetRange.z, from its angular diameter), a point or spot light's sphere of its
+// radius (spotOffsetRange.z; 0 for a punctual light).
+float punctualSolidAngle(GpuLight light, vec3 position) {
+    if (light.vectorType.w < 0.5) return light.spotOffsetRange.z;
+    vec3 d = light.vectorType.xyz - position;
+    float sin2 = min(light.spotOffsetRange.z * light.spotOffsetRange.z / max(dot(d, d), 1e-12), 1.0);
+    return 2.0 * PI * (1.0 - sqrt(1.0 - sin2));
+}
+
+// The glint factor of an area light (multiplies its smooth LTC specular; expectation 1). Methods that define
+// GLINT_AREA_LIGHTS compute it themselves (glintAreaFactor); for the others it is their NDF at the light's centre
+// direction over the smooth NDF there: the light's glints are those of a point light at its centre
+// (shaders/glints/README.md "Extended lights").
+vec3 areaGlintFactor(GlintPixel glint, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+#ifdef GLINT_AREA_LIGHTS
+    return glintAreaFactor(glint, s, h, wi, wo);
+#else
+    float smoothD = D_smooth(h, s.alpha, s.ndf);
+    if (!(smoothD > 1e-30)) return vec3(1.0);
+#ifdef GLINT_COLOR_D
+    return glintColorD(glint, s, h, wi, wo) / smoothD;
+#else
+    return vec3(glintD(glint, s, h, wi, wo) / smoothD);
+#endif
+#endif
+}
 
 // The pixel as the G-buffer holds it (layout in frame/gbuffer.frag), with what the shading needs of its material.
 struct PixelSurface {
@@ -243,7 +272,10 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
     // At the G-buffer's own position (TAA's glint unjittering may have moved `position`), as the mask's samples.
     shadowMaskVisibility(s.pixel, maskTaps, maskVisibility);
 #endif
-    for (int i = 0; i < lightCount; ++i) {
+    int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
+    // Punctual and directional lights. Area lights follow in a loop of their own: llvmpipe executes both sides of a
+    // branch, so one loop would make every light pay for the LTC integrals.
+    for (int i = 0; i < lightCount - areaLightCount; ++i) {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], p.position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
@@ -268,6 +300,11 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
 #ifdef GLINT_SURFACE_DERIVATIVES
         g_glintLightDistance = u_lights[i].vectorType.w < 0.5 ? 0.0 : distance(u_lights[i].vectorType.xyz, p.position);
 #endif
+        // The light's size for the glint methods (GlintLight): its solid angle and the integral of D(h) / (4 |l.h|)
+        // over it, D(h) Omega / (4 (l.h)) for a light this small (Kneiphof & Klein 2024, Sec. 4.3).
+        g_glintLight.area = false;
+        g_glintLight.solidAngle = punctualSolidAngle(u_lights[i], p.position);
+        g_glintLight.ndfIntegral = D_smooth(h, s.alpha, s.ndf) * g_glintLight.solidAngle / (4.0 * max(dot(wi, h), 1e-4));
 #ifdef GLINT_COLOR_D
         // Methods with per-glint colours return an RGB NDF (shaders/glints/README.md).
         vec3 colorD = p.glinty ? glintColorD(glint, s, h, wi, wo) : vec3(D_smooth(h, s.alpha, s.ndf));
@@ -287,6 +324,58 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
         if (p.glinty) sum.glintPart += specular * irradiance * wi.z;
 #endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
+    }
+
+    // Area lights (lights/area_light.glsl): Lambertian emitters of radiance L; diffuse = albedo x L x their form
+    // factor, specular = L x (f0 A + B) x the specular LTC's integral over them (Heitz et al. 2016, Eq. 7 and
+    // Sec. 4.3), times the glint factor of the method on glinty pixels (Kneiphof & Klein 2024, Sec. 4: the glint
+    // factor multiplies the LTC specular).
+    if (areaLightCount > 0 && wo.z > 0.0) {
+        LtcPixel ltc = ltcSetup(s.n, toEye, s.alpha, s.ndf);   // once per pixel, shared by the area lights
+        vec3 specularAlbedo = f0 * ltc.splitSum.x + ltc.splitSum.y;
+        for (int i = lightCount - areaLightCount; i < lightCount; ++i) {
+            AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
+            if (!g.visible) continue;
+#ifdef SHADOWS
+            float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+            float visibility = 1.0;
+#endif
+            if (i == 0) sum.firstLightVisibility = visibility;
+            if (visibility <= 0.0) continue;
+            vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
+            // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of the
+            // integrals in the program; ltcLoopCount keeps the compiler from unrolling it).
+            float integrals[2];
+            for (int k = 0; k < ltcLoopCount(2); ++k)
+                integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV, k == 0 ? mat3(1.0) : ltc.invSpecular);
+            // Spheres: the cap's exact form factor (the disk of their silhouette gives the same, less exactly).
+            float diffuse = g.sinSigma2 > 0.0 ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : integrals[0];
+            float specularIntegral = integrals[1];
+            vec3 specular = specularAlbedo * specularIntegral;
+            if (p.glinty && specularIntegral > 0.0) {
+                // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
+                // angular cell of deliot2023's grid and the NDF value of the fallback.
+                vec3 wi = worldToShading * g.towardCentre;
+                vec3 h = normalize(vec3(wi.xy, max(wi.z, 1e-4)) + wo);
+                g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral, g.shape,
+                                          g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
+                specular *= areaGlintFactor(glint, s, h, wi, wo);
+#ifdef GLINT_METHOD_TARGETS
+                // The method keeps its light glints in its own target (its passes add them later).
+                if (glintTakeLightGlint(specular * L)) specular = vec3(0.0);
+#else
+                sum.glintPart += specular * L;
+#endif
+            }
+            radiance += (diffuseAlbedo * diffuse + specular) * L;
+            if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
+                // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
+                vec3 towardLight, irradiance;
+                lightIncidence(u_lights[i], p.position, towardLight, irradiance);
+                coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
+            }
+        }
     }
     return sum;
 }
@@ -384,7 +473,9 @@ void main() {
 
     LightSum lights = shadeLights(p, glint, worldToShading, toEye, wo, diffuseAlbedo, f0, coat, maskTaps, radiance,
                                   coatRadiance);
-    vec3 glintPart = lights.glintPart;
+    // The environment's glints (the IBL mode's, inside `radiance`: environment/ibl/prefiltered.glsl) join the
+    // lights' in the glint part.
+    vec3 glintPart = lights.glintPart + occlusion.rgb * g_environmentGlintPart;
     if (coated) {
         float baseShare = 1.0 - coat.weight;
         radiance = radiance * baseShare + coatRadiance;

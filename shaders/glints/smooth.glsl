@@ -1,4 +1,5 @@
 // The smooth reference: the analytic NDF itself (no glints). Every glint method converges to this.
+// Extended lights: D_smooth for every light, so an area light's factor is 1 (its smooth LTC specular).
 struct GlintPixel { FootprintEllipse footprint; };
 
 GlintPixel glintSetup(GlintSurface s) {

@@ -27,7 +27,9 @@ void main() {
             int i = u_shadowSlotLights[u_layer][c];
             vec3 towardLight, irradiance;
             lightIncidence(u_lights[i], position, towardLight, irradiance);
-            visibility[c] = lightVisibility(i, u_lights[i].vectorType.xyz, position, n, towardLight);
+            // Size: radius of a point or spot light, of a disk of an area light's area (render/gpu_scene.cpp).
+            visibility[c] = lightVisibility(i, u_lights[i].vectorType.xyz, u_lights[i].vectorType.w > 0.5 ? u_lights[i].spotOffsetRange.z : 0.0,
+                                            position, n, towardLight);
         }
     }
     o_visibility = visibility;

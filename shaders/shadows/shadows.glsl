@@ -7,6 +7,9 @@
 // bias texels; the casters carry a slope-scaled depth offset (glPolygonOffset, shadow.slope_bias).
 // Filter: 4 x 4 hardware bilinear compares spread evenly over +-radius texels (percentage-closer filtering,
 // Reeves et al. 1987); at radius 1.5 the taps are one texel apart and their tents overlap into one smooth kernel.
+// Lights with a size (area lights, point and spot lights with a radius) cast soft shadows: percentage-closer soft
+// shadows (Fernando 2005) in their perspective views: a blocker search, then a penumbra from the light's size
+// w = size (d_receiver - d_blocker) / d_blocker, filtered by 6 x 6 compares over it (shadowPcssLocal).
 #include "common/bindings.glsl"
 #include "common/plane_aware_upsample.glsl"
 
@@ -26,9 +29,12 @@ layout(std140, binding = BINDING_SHADOWS) uniform ShadowBlock {
     vec4 u_shadowMapSizes;                     // x 1 / sun size, y 1 / local size, z sun size, w local size
     ivec4 u_shadowMask;                        // x G-buffer pixels per mask texel (1, 2), y slots, z mask layers
     ivec4 u_shadowSlotLights[MAX_SHADOW_SLOTS / 4];   // the light of each slot (slot = 4 x layer + channel)
+    vec4 u_shadowSoft;                         // x near plane of the local views (m), y widest penumbra (texels)
 };
 layout(binding = UNIT_SHADOW_SUN) uniform sampler2DArrayShadow s_shadowSun;
 layout(binding = UNIT_SHADOW_LOCAL) uniform sampler2DArrayShadow s_shadowLocal;
+// The same depths without comparison (a sampler object on its own unit), for the soft shadows' blocker search.
+layout(binding = UNIT_SHADOW_LOCAL_DEPTH) uniform sampler2DArray s_shadowLocalDepth;
 layout(binding = UNIT_SHADOW_MASK) uniform sampler2DArray s_shadowMask;
 
 // Tap offsets of the PCF kernel in texels for `radius`; the reach is radius + 1 texel (the bilinear tent).
@@ -51,6 +57,45 @@ float shadowPcfLocal(vec2 uv, float layer, float depth, float texel, float radiu
     return sum * (1.0 / 16.0);
 }
 
+// Percentage-closer soft shadows (Fernando 2005, "Percentage-Closer Soft Shadows") in a perspective view of a light
+// of radius `size` (m) whose view depth at the receiver is `depth` (m): the map's depths are reversed and infinite
+// (stored near / depth). 1. Blocker search over the penumbra a blocker half-way to the light would cast,
+// size / (depth texelWorld) texels; 2. the mean blocker depth gives the penumbra w = size (depth - blocker) /
+// blocker, in texels w / (depth texelWorld); 3. 6 x 6 bilinear compares over it (at least the PCF radius).
+// Deviation: the widest penumbra is clamped (u_shadowSoft.y texels) so that the kernel stays within the face's guard.
+float shadowPcssLocal(vec2 uv, float layer, float ndcDepth, float depth, float texelWorld, float size, float radius) {
+    float texel = u_shadowMapSizes.y;
+    float widest = u_shadowSoft.y;
+    // The tap grids turn by a per-pixel angle (an integer hash of the pixel): a wide kernel's 6 x 6 taps are
+    // several texels apart, and an unturned grid draws concentric bands across a penumbra; turned, they become
+    // fine noise.
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    uint hash = (pixel.x * 1973u + pixel.y * 9277u + 26699u) | 1u;
+    hash ^= hash >> 13u;
+    hash *= 0x5bd1e995u;
+    hash ^= hash >> 15u;
+    float angle = float(hash & 0xffffu) * (6.2831853 / 65536.0);
+    mat2 turn = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+    float search = clamp(size / max(depth * texelWorld, 1e-9), radius, widest);
+    float blockers = 0.0, blockerSum = 0.0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            vec2 offset = turn * shadowTapOffset(i, j, search);
+            float stored = textureLod(s_shadowLocalDepth, vec3(uv + offset * texel, layer), 0.0).r;
+            bool blocks = stored > ndcDepth;   // reversed: nearer the light
+            blockers += blocks ? 1.0 : 0.0;
+            blockerSum += blocks ? u_shadowSoft.x / max(stored, 1e-9) : 0.0;
+        }
+    float blockerDepth = blockers > 0.0 ? blockerSum / blockers : depth;
+    float penumbra = size * max(depth - blockerDepth, 0.0) / max(blockerDepth, 1e-6);
+    float kernel = clamp(penumbra / max(depth * texelWorld, 1e-9), radius, widest);
+    float sum = 0.0;
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i)
+            sum += texture(s_shadowLocal, vec4(uv + turn * ((vec2(i, j) - 2.5) * (kernel * 0.4)) * texel, layer, ndcDepth));
+    return blockers > 0.0 ? sum * (1.0 / 36.0) : 1.0;
+}
+
 // The receiver point moved by the biases for a view whose texel measures `texel` metres here.
 vec3 shadowReceiver(vec3 position, vec3 normal, vec3 towardLight, float texel) {
     float cosTheta = clamp(dot(normal, towardLight), 0.0, 1.0);
@@ -59,8 +104,8 @@ vec3 shadowReceiver(vec3 position, vec3 normal, vec3 towardLight, float texel) {
 }
 
 // Visibility in [0, 1] of light `index` (its vector: position of a point light) at `position` with unit
-// `normal`; 1 for lights without a shadow map.
-float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, vec3 towardLight) {
+// `normal`; 1 for lights without a shadow map. `size`: the light's radius in metres (0: a point; soft shadows).
+float lightVisibility(int index, vec3 lightVector, float size, vec3 position, vec3 normal, vec3 towardLight) {
     if (u_shadowFilter.w < 0.5 || index >= MAX_SHADOW_LIGHTS) return 1.0;
     ivec4 record = u_shadowLights[index];
     float radius = u_shadowFilter.x;
@@ -96,7 +141,9 @@ float lightVisibility(int index, vec3 lightVector, vec3 position, vec3 normal, v
         vec4 clip = u_shadowViews[view] * vec4(p, 1.0);
         vec3 ndc = clip.xyz / max(clip.w, 1e-4);   // behind a spot: finite, and outside the map below
         vec2 uv = ndc.xy * 0.5 + 0.5;
-        float shadow = shadowPcfLocal(uv, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
+        float shadow = size > 0.0 ? shadowPcssLocal(uv, u_shadowViewInfo[view].y, ndc.z, clip.w, u_shadowViewInfo[view].x,
+                                                    size, radius)
+                                  : shadowPcfLocal(uv, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
         // Outside a spot's view (beyond its outer cone, where it sends no light) nothing is shadowed.
         bool inView = clip.w > 1e-4 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
         return inView ? shadow : 1.0;

@@ -154,7 +154,10 @@ private:
         for (int i = 0; i < n; ++i)
             if (methods[size_t(i)].id == renderer_->settings().method) current = i;
         RenderSettings next = renderer_->settings();
-        next.method = methods[size_t(((current + step) % n + n) % n)].id;
+        const GlintMethod& chosen = methods[size_t(((current + step) % n + n) % n)];
+        // The IBL mode follows the method's default while it is the previous one's (GlintMethod::defaultIbl).
+        if (next.ibl == defaultIblOf(methods[size_t(current)])) next.ibl = defaultIblOf(chosen);
+        next.method = chosen.id;
         applySettings(next);
         showMessage("method " + renderer_->settings().method);
     }

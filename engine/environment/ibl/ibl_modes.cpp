@@ -14,8 +14,14 @@ static IblMode prefilteredMode() {
             "Prefiltered environment (split sum, SH irradiance)",
             "IBL_MODE_PREFILTERED",
             "environment/ibl/prefiltered.glsl",
-            "Karis 2013, Real Shading in Unreal Engine 4 (split sum); Ramamoorthi & Hanrahan 2001 (SH irradiance)",
-            {},
+            "Karis 2013, Real Shading in Unreal Engine 4 (split sum); Ramamoorthi & Hanrahan 2001 (SH irradiance); "
+            "Kneiphof & Klein 2025, Real-time Image-based Lighting of Glints (environment glints)",
+            {{"glint_levels", 1.0f, 0.0f, 2.0f,
+              "environment glints of methods that draw them (deliot2023; Kneiphof & Klein 2025): the environment's "
+              "radiance in 4 or 8 log-spaced levels, or off", {"off", "4", "8"}},
+             {"glint_black_level", 0.01f, 1e-6f, 100.0f,
+              "luminance below which the environment counts as dark for the glint levels (the paper's 10^-2)", {},
+              false, true}},
             false,
             {},
             nullptr};

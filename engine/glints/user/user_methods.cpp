@@ -41,6 +41,9 @@ GlintMethod parseUserMethodHeader(const std::string& text, const std::string& fi
     method.resourcesFrom = header.resourcesFrom;
     if (from) {
         method.createResources = from->createResources;
+        // A method built on a built-in's code (and resources) draws its environment glints when that code does
+        // (deliot2023's glintEnvironmentFactor): the renderer then builds the environment's levels for it too.
+        method.environmentGlints = from->environmentGlints;
         // The borrowed resources are built from the shared values of the material the built-in chooses.
         for (const ParamSpec& p : method.params)
             if (p.name == from->sharedDataMaterial) method.sharedDataMaterial = from->sharedDataMaterial;

@@ -9,7 +9,7 @@ namespace glimmer {
 const char* frameResourceName(FrameResource resource) {
     static const char* const names[kFrameResourceCount] = {
         "gbuffer",     "depth",         "shadow_maps", "shadow_mask",    "ambient_occlusion_raw",
-        "ambient_occlusion", "reflection_probes", "shading_class", "hdr", "glint_part",
+        "ambient_occlusion", "reflection_probes", "environment_glints", "shading_class", "hdr", "glint_part",
         "method_targets", "opaque_mean", "post_hdr",  "exposure_state", "bloom",
         "display"};
     const int i = int(resource);

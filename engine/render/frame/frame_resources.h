@@ -18,11 +18,13 @@ namespace glimmer {
 enum class FrameResource : int {
     GBuffer,          // the six colour targets (layout in shaders/frame/gbuffer.frag), render size
     Depth,            // reversed-Z depth of the opaque surfaces, render size
-    ShadowMaps,       // textures: the sun and local depth arrays; buffer: the shadow block (shaders/shadows/)
+    ShadowMaps,       // textures: the sun and local depth arrays, the local one without compare; buffer: the shadow block (shaders/shadows/)
     ShadowMask,       // every shadowed light's visibility, an RGBA8 array (every pixel or every second one)
     AmbientOcclusionRaw,  // GTAO's raw visibility
     AmbientOcclusion,     // the resolved factor on the environment term (1 x 1 white when AO is off)
     ReflectionProbes, // textures: the probe cube-map array; buffer: the probe block
+    EnvironmentGlints,  // buffer: the environment's radiance levels; textures: the sky's and the probes' level
+                        // weights (environment/environment_glints.h); no buffer: none this frame
     ShadingClass,     // DEPTH16: 1 on glinty pixels, 0 elsewhere (lighting.split_glinty)
     Hdr,              // linear HDR radiance (or the debug view), render size
     GlintPart,        // the lights' glint radiance inside Hdr, kept out of TAA's clipping (aa=taa)

@@ -76,7 +76,8 @@ void LightingPass::setShadows(bool shadows) {
 
 PassResources LightingPass::resources() const {
     return {.reads = {FrameResource::GBuffer, FrameResource::Depth, FrameResource::ShadowMaps,
-                      FrameResource::ShadowMask, FrameResource::AmbientOcclusion, FrameResource::ReflectionProbes},
+                      FrameResource::ShadowMask, FrameResource::AmbientOcclusion, FrameResource::ReflectionProbes,
+                      FrameResource::EnvironmentGlints},
             .writes = {FrameResource::ShadingClass, FrameResource::Hdr, FrameResource::GlintPart,
                        FrameResource::MethodTargets}};
 }
@@ -221,6 +222,8 @@ void LightingPass::bindInputs(const FrameContext& frame) {
     if (iblResources_) iblResources_->bind();
     frame.environment.bind(frame.settings.value(param::env_intensity), frame.settings.value(param::env_rotation));
     bindProbeInputs(frame.resources.read(FrameResource::ReflectionProbes));
+    bindEnvironmentGlints(frame.resources.read(FrameResource::EnvironmentGlints), noEnvironmentGlints_);
+    ltcTable_.bind();   // the area lights' LTC tables (render/lights/)
     // Per-light visibility (shaders/shadows/shadows.glsl); without SHADOWS the program reads none.
     if (shadows_)
         bindShadowInputs(frame.resources.read(FrameResource::ShadowMaps), frame.resources.read(FrameResource::ShadowMask));

@@ -22,7 +22,9 @@
 
 #include "environment/ibl/scene_capture.h"
 #include "gl/handles.h"
+#include "render/frame/environment_glints_pass.h"
 #include "render/frame/pass.h"
+#include "render/lights/ltc_texture.h"
 
 namespace glimmer {
 
@@ -74,6 +76,8 @@ private:
     std::string methodResourcesFrom_;   // GlintMethod::resourcesFrom of the resources made (user methods may change it)
     std::unique_ptr<IblModeResources> iblResources_;
     gl::Buffer methodParams_, iblParams_;
+    LtcTexture ltcTable_;                     // the area lights' LTC tables (unit 32)
+    NoEnvironmentGlints noEnvironmentGlints_; // bound when the frame has no environment glints
     gl::Buffer materialMethodParams_;   // per-material method parameters (BINDING_MATERIAL_METHOD_PARAMS)
     long long materialMethodParamsBytes_ = 0;
     ParamValues sharedMethodValues_;    // what the method's shared GPU data are built from (glint_mapping.h)

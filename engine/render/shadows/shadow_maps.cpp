@@ -19,20 +19,29 @@ struct ShadowBlockData {
     glm::vec4 mapSizes;                     // 1 / sun size, 1 / local size, sun size, local size
     glm::ivec4 mask;                        // G-buffer pixels per mask texel, slots, mask layers
     glm::ivec4 slotLights[kMaxShadowSlots / 4];   // light index of each slot
+    glm::vec4 soft;                         // near plane of the local views, widest penumbra (texels)
 };
-static_assert(sizeof(ShadowBlockData) == kMaxShadowViews * 80 + kMaxShadowLights * 16 + 48 + kMaxShadowSlots * 4);
+static_assert(sizeof(ShadowBlockData) == kMaxShadowViews * 80 + kMaxShadowLights * 16 + 48 + kMaxShadowSlots * 4 + 16);
 
 // Kinds of ShadowBlock.lights[].x (shaders/shadows/shadows.glsl).
 constexpr int kShadowNone = 0, kShadowCascades = 1, kShadowCube = 2, kShadowSpot = 3;
 
-bool isLocal(const Light& light) { return light.type == LightType::Point || light.type == LightType::Spot; }
+// Point, spot and area lights: perspective views from their position (an area light's centre).
+bool isLocal(const Light& light) { return light.type != LightType::Directional; }
+// Size for soft shadows (shaders/shadows/shadows.glsl shadowPcssLocal): the radius of a point or spot light, of an
+// area light's disk of equal area (render/gpu_scene.cpp).
+bool castsSoftShadows(const Light& light) { return light.radius > 0.0f || light.isArea(); }
 // Views of a local light's shadow: one for a spot narrow enough, else the six faces of a cube.
 int localViewCount(const Light& light) {
     return light.type == LightType::Spot && light.outerConeAngle <= kMaxSpotViewHalfAngle ? 1 : 6;
 }
 
-// Guard band of a view, in texels: the PCF taps reach filterRadius + 1 texels (bilinear) from the point.
+// Guard band of a view, in texels: the PCF taps reach filterRadius + 1 texels (bilinear) from the point; a soft
+// shadow's kernel up to kMaxPenumbraTexels.
 float guardTexels(const ShadowSettings& s) { return s.filterRadius + 2.0f; }
+float guardTexels(const ShadowSettings& s, const Light& light) {
+    return castsSoftShadows(light) ? std::max(s.filterRadius, kMaxPenumbraTexels) + 2.0f : guardTexels(s);
+}
 
 uint64_t fnv(uint64_t hash, const void* data, size_t bytes) {
     const auto* p = static_cast<const unsigned char*>(data);
@@ -96,6 +105,16 @@ void ShadowMaps::ensureArrays() {
     }
     if (!localArray_ || localLayers != localLayers_ || localSize != localSize_) {
         localArray_ = createDepthArray(localSize, localLayers);
+        // The same depths read without comparison (the soft shadows' blocker search): a view with its own state.
+        GLuint view = 0;
+        glGenTextures(1, &view);
+        glTextureView(view, GL_TEXTURE_2D_ARRAY, localArray_.id(), GL_DEPTH_COMPONENT32F, 0, 1, 0, localLayers);
+        glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(view, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(view, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(view, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        localDepthView_ = gl::Texture(view);
         localLayers_ = localLayers, localSize_ = localSize;
         for (LocalState& local : locals_) local.valid = false;
     }
@@ -107,6 +126,8 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
     stats_ = {};
     views_.clear();
     // Per light: kind, first view, view count, mask slot (-1: unshadowed).
+    // Records are indexed like the GPU's lights (scene.h gpuLightOrder: punctual lights, then area lights).
+    const std::vector<size_t> order = gpuLightOrder(scene.lights);
     std::vector<glm::ivec4> records(std::min(scene.lights.size(), size_t(kMaxShadowLights)),
                                     glm::ivec4(kShadowNone, 0, 0, -1));
     slots_ = 0;
@@ -143,7 +164,7 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
 
     size_t directional = 0, local = 0;
     for (size_t i = 0; i < records.size(); ++i) {
-        const Light& light = scene.lights[i];
+        const Light& light = scene.lights[order[i]];
         if (light.type == LightType::Directional && directional < size_t(kMaxShadowedDirectional)) ++directional;
         if (isLocal(light) && local < size_t(kMaxShadowedLocal)) {
             if (local >= locals_.size()) locals_.emplace_back();
@@ -159,7 +180,7 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
     directional = local = 0;
     int localLayer = 0;
     for (size_t i = 0; i < records.size(); ++i) {
-        const Light& light = scene.lights[i];
+        const Light& light = scene.lights[order[i]];
         if (light.type == LightType::Directional && directional < suns_.size()) {
             records[i] = {kShadowCascades, int(views_.size()), settings_.cascades, slots_++};
             slotLights_.push_back(int(i));
@@ -236,8 +257,9 @@ void ShadowMaps::fitLocal(LocalState& local, const Light& light, int firstLayer)
     const bool spot = local.viewCount == 1;
     const glm::vec3 position = light.vector;
     const glm::vec3 direction = spot ? glm::normalize(light.spotDirection) : glm::vec3(0.0f);
-    const float tanHalf = spot ? spotViewTanHalf(light.outerConeAngle, settings_.pointMapSize, guardTexels(settings_))
-                               : cubeFaceTanHalf(settings_.pointMapSize, guardTexels(settings_));
+    const float guard = guardTexels(settings_, light);
+    const float tanHalf = spot ? spotViewTanHalf(light.outerConeAngle, settings_.pointMapSize, guard)
+                               : cubeFaceTanHalf(settings_.pointMapSize, guard);
     const bool reuse =
         local.valid && local.position == position && local.direction == direction && local.tanHalf == tanHalf;
     local.position = position;
@@ -270,6 +292,7 @@ void ShadowMaps::upload(const std::vector<glm::ivec4>& lightRecords) {
     data.mapSizes = {1.0f / float(sunSize_), 1.0f / float(localSize_), float(sunSize_), float(localSize_)};
     data.mask = {maskStep(), slots_, maskLayers(), 0};
     for (int slot = 0; slot < slots_; ++slot) data.slotLights[slot / 4][slot % 4] = slotLights_[size_t(slot)];
+    data.soft = {kLocalNearPlane, kMaxPenumbraTexels, 0.0f, 0.0f};
     glNamedBufferSubData(block_.id(), 0, sizeof(data), &data);
 }
 
@@ -300,7 +323,8 @@ GLuint ShadowMaps::maskFramebuffer(int layer) {
 }
 
 FrameImage ShadowMaps::mapsImage() const {
-    return {.textures = {sunArray_.id(), localArray_.id()}, .buffer = block_.id(), .width = sunSize_, .height = sunSize_};
+    return {.textures = {sunArray_.id(), localArray_.id(), localDepthView_.id()}, .buffer = block_.id(),
+            .width = sunSize_, .height = sunSize_};
 }
 
 FrameImage ShadowMaps::maskImage() const {
@@ -312,6 +336,7 @@ void bindShadowInputs(const FrameImage& maps, const FrameImage& mask) {
     glBindBufferBase(GL_UNIFORM_BUFFER, BINDING_SHADOWS, maps.buffer);
     glBindTextureUnit(UNIT_SHADOW_SUN, maps.texture(0));
     glBindTextureUnit(UNIT_SHADOW_LOCAL, maps.texture(1));
+    glBindTextureUnit(UNIT_SHADOW_LOCAL_DEPTH, maps.texture(2));   // the local depths without compare (soft shadows)
     glBindTextureUnit(UNIT_SHADOW_MASK, mask.texture(0));
 }
 

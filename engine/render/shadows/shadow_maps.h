@@ -4,7 +4,9 @@
 // - point lights (lanterns): six perspective views, the faces of a cube (render/shadows/shadow_projections.h), in the
 //   local-light array;
 // - spot lights: one perspective view along the axis fitted to the outer cone, in the same array (a spot wider
-//   than kMaxSpotViewHalfAngle is shadowed like a point light: a single view would spread its texels too thin).
+//   than kMaxSpotViewHalfAngle is shadowed like a point light: a single view would spread its texels too thin);
+// - area lights (rect, disk, sphere): a cube at the light's centre, like a point light; their size (and a point
+//   light's radius) gives soft shadows (shaders/shadows/shadows.glsl).
 // prepare() decides each frame which views are still valid and which must be re-rendered (the shadow passes,
 // render/shadows/shadow_map_pass.h, render only those): a view is re-rendered when the scene's geometry, the
 // light or the map parameters changed, or, for a cascade, when the camera moved its needed region out of the
@@ -60,6 +62,9 @@ static_assert(kMaxShadowSlots % 4 == 0);
 constexpr float kCascadeMargin = 0.25f;
 // Near plane of the point lights' faces (metres): casters closer to a light than this cast no shadow.
 constexpr float kLocalNearPlane = 0.05f;
+// Widest soft-shadow kernel of a light with a size (texels of its views; shaders/shadows/shadows.glsl
+// shadowPcssLocal): its views carry a guard band this wide.
+constexpr float kMaxPenumbraTexels = 16.0f;
 
 enum class ShadowArray : int { Sun = 0, Local = 1 };
 
@@ -145,6 +150,7 @@ private:
     std::vector<LocalState> locals_;
     std::vector<ShadowView> views_;
     gl::Texture sunArray_, localArray_;
+    gl::Texture localDepthView_;   // localArray_ read without compare (soft shadows' blocker search)
     int sunLayers_ = 0, localLayers_ = 0, sunSize_ = 0, localSize_ = 0;
     gl::Framebuffer framebuffer_;
     gl::Texture mask_;

@@ -17,7 +17,37 @@
 // (`normalization`), an angular cell R wide in projected-h units (`angular_grid`), the soft gate (`gate`).
 // Total: 4 grids x 3 spatial vertices x 4 angular cells = 48 binomial evaluations per pixel and light.
 // Per-pixel work (footprint, grids, vertex hashes, facet counts) is in glintSetup, shared by every light.
+//
+// Kneiphof & Klein 2024, "Real-Time Rendering of Glints in the Presence of Area Lights" (Pacific Graphics 2024,
+// arXiv 2408.13611), `probability` = kk24 (default): Eq. 4's ad-hoc p = R D(h) / D(n) becomes the fraction of facets
+// whose mirror direction hits the light, p = [integral over the light of D(h) / (4 |l.h|) dl] / [integral of D over
+// the hemisphere of half vectors] (Sec. 4); the total NDF fitted as 1 + alpha^1.4109 (`total_ndf` = fit) or exact.
+// Area lights (glintAreaFactor): the integral is the NDF-only pre-integrated term times the light's LTC integral
+// (Sec. 4.2; the specular lobe's LTC by default, `light_integral` = ndf_ltc their dedicated one), the count is drawn
+// on this grid with the light's centre direction picking the angular cell, and count / (N p) multiplies the LTC
+// specular. Punctual and directional lights are lights of a solid angle Omega: p = D(h) Omega / (4 (l.h)) / total
+// (Sec. 4.3; the sun's 0.53 degrees give 6.7e-5 sr).
+// Deviation (`facets` = cone, the default): our facets reflect within a cone (the glint material's angular size,
+// mapped to R: a cone of pi alpha^2 R steradians of half vectors, Eq. 4 at h = n), which the light's solid angle
+// widens: p gains pi alpha^2 R D(h) / total. The paper's facets are mirrors (`facets` = mirror): a punctual light
+// (Omega = 0) would then show no glint at all, and the glint material's angular size would change nothing.
 #include "glints/deliot2023/deliot2023_binomial.glsl"
+#include "glints/deliot2023/deliot2023_multinomial.glsl"
+
+// Kneiphof & Klein 2024's parameters, at the table's defaults for user methods that include this file as a helper
+// and declare only deliot2023's older parameters (content/methods/deliot2023_smoothstep.glsl).
+#ifndef P_PROBABILITY
+#define P_PROBABILITY 0.0
+#endif
+#ifndef P_TOTAL_NDF
+#define P_TOTAL_NDF 0.0
+#endif
+#ifndef P_LIGHT_INTEGRAL
+#define P_LIGHT_INTEGRAL 0.0
+#endif
+#ifndef P_FACETS
+#define P_FACETS 0.0
+#endif
 
 const int DELIOT_VERTICES = 12;          // 4 grids (Sec. 6.1) x 3 simplex vertices (Sec. 6.2)
 const int DELIOT_MAX_RATIO_LEVEL = 16;   // numeric guard only (ratio 65536): never reached by real footprints
@@ -30,8 +60,30 @@ struct GlintPixel {
     bool softGate;                       // the authors' soft gate instead of Eq. 18's Heaviside
     float angularCellSize;               // cell of the hemispherical grid in projected-h units (Eq. 14)
     float Dn;                            // D(n), the NDF at the shading normal (Eq. 4)
+    float totalNdf;                      // integral of D over the hemisphere (Kneiphof & Klein 2024, Sec. 4)
+    float facetCone;                     // solid angle of half vectors one facet reflects (pi alpha^2 R; 0: mirrors)
     vec4 footprint;                      // anisotropy ratio, LOD, ratio level, orientation (radians)
 };
+
+// e^(x^2) erfc(x) for x >= 0 without overflow: the Chebyshev fit of erfc in Numerical Recipes (erfcc, fractional
+// error < 1.2e-7) carries a factor e^(-x^2), which cancels.
+float deliotScaledErfc(float x) {
+    float t = 1.0 / (1.0 + 0.5 * x);
+    return t * exp(-1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806 +
+               t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223 + t * 0.17087277)))))))));
+}
+
+// Kneiphof & Klein 2024, Sec. 4: the integral of D over the hemisphere of half vectors (not projected), the
+// probability's denominator. GGX: their fit 1 + alpha^1.4109, or exactly 1 + alpha^2 ln((1 + k) / alpha) / k with
+// k = sqrt(1 - alpha^2). Beckmann (theirs is GGX only): exactly 1 + sqrt(pi) alpha e^(1/alpha^2) erfc(1/alpha) / 2
+// in both readings (tools/ltc_fit/ltc_fitter.cpp totalNdf derives both; the tests check them by quadrature).
+float deliotTotalNdf(float alpha, int ndf) {
+    alpha = clamp(alpha, 1e-4, 1.0);
+    if (ndf == NDF_BECKMANN) return 1.0 + 0.88622693 * alpha * deliotScaledErfc(1.0 / alpha);
+    if (P_TOTAL_NDF < 0.5) return 1.0 + pow(alpha, 1.4109);
+    float k = sqrt(max(1.0 - alpha * alpha, 0.0));
+    return k > 1e-4 ? 1.0 + alpha * alpha * log((1.0 + k) / alpha) / k : 2.0;
+}
 
 // Debug counters for --aov extra: binomial evaluations and glintD calls of this pixel.
 int g_deliotEvaluations = 0;
@@ -235,6 +287,8 @@ GlintPixel glintSetup(GlintSurface s) {
                                       : barycentric[v] * px.invTotalFacets;
     px.softGate = P_GATE < 0.5;
     px.Dn = D_smooth(vec3(0.0, 0.0, 1.0), s.alpha, s.ndf);
+    px.totalNdf = deliotTotalNdf(s.alpha, s.ndf);
+    px.facetCone = P_FACETS < 0.5 ? PI * s.alpha * s.alpha * P_MICROFACET_ROUGHNESS : 0.0;
     // Eq. 14 hemispherical grid, subdivided for micro-roughness. projected (authors' code): a cell is R wide in
     // units of the orthographic projection of h, which sets how long a glint lives as the light or view moves
     // (their grid indexes |h.x|, |h.y|, mirroring the pattern about the tangent axes: not reproduced). lobe (an
@@ -244,11 +298,9 @@ GlintPixel glintSetup(GlintSurface s) {
     return px;
 }
 
-float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
-    g_deliotLightCalls += 1;
-    float R = P_MICROFACET_ROUGHNESS;
-    // Eq. 4: success probability p = R D(h) / D(n), in [0, R] for NDFs peaking at the normal.
-    float p = clamp(R * D_smooth(h, s.alpha, s.ndf) / max(px.Dn, 1e-30), 0.0, 1.0);
+// Eq. 10 + 18: the footprint's count of facets that reflect with probability p, over its facets (the / N is in
+// countWeight): expectation p. The angular cell of Eq. 14 comes from h.
+float deliotCount(GlintPixel px, vec3 h, float p) {
     // Eq. 14: bilinear weights of the 4 hemispherical-grid cells around the projected half vector.
     vec2 q = h.xy / px.angularCellSize - 0.5;
     vec2 qBase = floor(q);
@@ -258,7 +310,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
     vec4 angularWeight = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
     float logMiss = deliotLogMiss(p);   // Eq. 16's log(1 - p): once per light
     float count = 0.0;
-    for (int v = 0; v < DELIOT_VERTICES; ++v) {
+    for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
         // Eq. 10 + 18: this grid vertex's share w_i N_i of the footprint's facets, drawn from the gated binomial
         // with the random numbers of each of the 4 angular cells (the law's parameters are shared by the 4 draws).
         DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss, px.softGate);
@@ -271,9 +323,87 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
         g_deliotEvaluations += 4;
         count += px.countWeight[v] * vertexCount;
     }
-    // Eq. 3-4: D_P = D(n)/R * count / N (the / N is in countWeight). max_ratio: the authors' clamp at 20 D(n).
-    float dp = px.Dn / R * count;
+    return count;
+}
+
+// The probability that one facet reflects the current light (g_glintLight) towards the eye through h.
+// db23: Eq. 4, p = R D(h) / D(n), in [0, R] for NDFs peaking at the normal (area lights: at their centre direction).
+// kk24: Kneiphof & Klein 2024, Sec. 4, [integral over the light of D(h) / (4 |l.h|) + facet cone x D(h)] / total.
+float deliotProbability(GlintPixel px, GlintSurface s, vec3 h, float lightIntegral) {
+    float D = D_smooth(h, s.alpha, s.ndf);
+    if (P_PROBABILITY > 0.5) return clamp(P_MICROFACET_ROUGHNESS * D / max(px.Dn, 1e-30), 0.0, 1.0);
+    return clamp((lightIntegral + px.facetCone * D) / px.totalNdf, 0.0, 1.0);
+}
+
+float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+    g_deliotLightCalls += 1;
+    float p = deliotProbability(px, s, h, g_glintLight.ndfIntegral);
+    if (!(p > 0.0)) return 0.0;
+    // Eq. 3-4: D_P = D(h) / p x count / N (= D(n) / R x count / N with Eq. 4's p); expectation D(h).
+    // max_ratio: the authors' clamp of D_P at 20 D(n) (0 = none, the default).
+    float dp = D_smooth(h, s.alpha, s.ndf) / p * deliotCount(px, h, p);
     return P_MAX_RATIO > 0.0 ? min(dp, P_MAX_RATIO * px.Dn) : dp;
+}
+
+#ifdef GLIMMER_LIGHTING_PASS
+// Area lights (lighting.frag; shaders/glints/README.md "Extended lights"), Kneiphof & Klein 2024, Sec. 4-5: the
+// count under the light's probability over its expectation, multiplying the LTC specular.
+#define GLINT_AREA_LIGHTS 1
+vec3 glintAreaFactor(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
+    g_deliotLightCalls += 1;
+    // Sec. 4.2: the NDF-only term times an LTC integral over the light; the specular lobe's LTC (the lighting pass
+    // computed it) or the dedicated NDF-only LTC fitted by tools/ltc_fit.
+    float integral = g_glintLight.ndfIntegral;
+    if (P_LIGHT_INTEGRAL > 0.5)
+        integral = g_glintLight.ndfOnlyMagnitude * ltcAreaIntegral(g_glintLight.shape, g_glintLight.centre,
+                                                                   g_glintLight.halfU, g_glintLight.halfV,
+                                                                   g_glintLight.invNdfOnly);
+    float p = deliotProbability(px, s, h, integral);
+    if (!(p > 0.0)) return vec3(0.0);
+    // max_ratio as in glintD: the factor times D(h) is D_P, clamped at max_ratio D(n).
+    float factor = deliotCount(px, h, p) / p;
+    float D = D_smooth(h, s.alpha, s.ndf);
+    return vec3(P_MAX_RATIO > 0.0 && D > 0.0 ? min(factor, P_MAX_RATIO * px.Dn / D) : factor);
+}
+#endif
+
+// Environment glints (shaders/glints/README.md "Environment glints"), Kneiphof & Klein 2025, Sec. 4.2: a facet
+// reflects the visible hemisphere with p_base = (NDF-only integral) / total NDF, and level i of the environment with
+// p_i = p_base w_i (level 0, radiance 0, also takes the 1 - p_base that reflect nothing); each grid vertex's facets
+// are shared among the levels by the hierarchical multinomial (glints/deliot2023/deliot2023_multinomial.glsl) on this method's
+// grid (no angular cell: the environment has no single half vector), and the glint attenuation
+// sum_i L_i D_i / sum_i L_i p_i (expectation 1) multiplies the split-sum specular.
+#define GLINT_ENVIRONMENT 1
+float glintEnvironmentFactor(GlintPixel px, GlintSurface s, GlintEnvironment env) {
+    if (env.levels <= 1) return 1.0;
+    float pBase = clamp(env.ndfIntegral / px.totalNdf, 0.0, 1.0);
+    float p[8];
+    float expected = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        p[i] = pBase * env.weight[i];
+        expected += env.radiance[i] * p[i];
+    }
+    p[0] += 1.0 - pBase;
+    if (!(expected > 0.0)) return 1.0;
+    Kk25Tree tree = kk25Tree(p, env.levels);   // the splits' probabilities and logs: once per pixel
+    float D[8] = float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
+        if (!(px.countWeight[v] > 0.0)) continue;   // a grid vertex of weight 0 (the tetrahedral split's)
+        // 7 noise pairs per vertex, from two 2 x 2 blocks of its noise texels away from its angular cells (the
+        // angular grid spans |h.xy| / R <= 1 / R cells around the vertex's texel).
+        uvec4 first = deliotNoiseGather(px.texel[v], ivec2(-613, 401));
+        uvec4 second = env.levels > 4 ? deliotNoiseGather(px.texel[v], ivec2(419, -887)) : first;
+        vec2 rnd[7];
+        for (int k = 0; k < 4; ++k) rnd[k] = deliotUnpackNoise(first[k]);
+        for (int k = 0; k < 3; ++k) rnd[4 + k] = deliotUnpackNoise(second[k]);
+        if (env.levels <= 4) rnd[6] = rnd[3];
+        float c[8];
+        kk25Multinomial(px.trials[v], tree, rnd, c);
+        for (int i = 0; i < 8; ++i) D[i] += px.countWeight[v] * c[i];
+    }
+    float observed = 0.0;
+    for (int i = 0; i < 8; ++i) observed += env.radiance[i] * D[i];
+    return observed / expected;
 }
 
 vec4 glintFootprintAOV(GlintPixel px, GlintSurface s) { return px.footprint; }

@@ -1,5 +1,9 @@
 // Kemppinen et al. 2025, "Evaluating and Sampling Glinty NDFs in Constant Time" (ACM TOG 44(6), Art. 255):
 // evaluation of the filtered semi-discrete NDF D*^f, Algorithm 1. CPU twin: engine/reference/kemppinen2025_reference.
+// Extended lights (README "Extended lights"): the paper evaluates D* for point lights and importance-samples it for
+// environments; an area light's glints are D* at its centre direction over the smooth NDF there (the lighting pass's
+// fallback); the light's solid angle (GlintLight) is not convolved into the Gaussian glints (their angular width is
+// alpha*: a light wider than that would widen them, which this reading leaves out).
 //
 // D*^f(x, h) = D(h) [ (1/N) sum_{i in B(k)} R_i c_i g_a(T(h) - mu_i; Sigma_a) g_s(x_i - x; Sigma_s) + C(h) E[c] ]
 // (Eq. 5 and 11), with g normalised 2D Gaussians (the paper's N(.) is written with a 1D constant; the 2D one is

@@ -22,6 +22,9 @@
 // Deviations: the paper's tree nodes store id, count, depth, child count and AABB (two float4); ours is an
 // implicit complete tree of counts. The traversal gathers once per pixel in glintSetup (the paper's two-step
 // traversal with a tree cut, Sec. 5), so lights only compare lambdas.
+// Extended lights (README "Extended lights"): Sec. 5 shades point and directional lights with the DPF of their
+// direction; an area light's glints are that at its centre direction over the smooth NDF there (the lighting pass's
+// fallback). Its environment glints (Sec. 4) are the IBL mode `wang2020`, the default when this method is selected.
 #include "common/bindings.glsl"
 
 // Glint colour (Sec. 4.5): an RGB tint of the glints, through the RGB-NDF path of lighting.frag.

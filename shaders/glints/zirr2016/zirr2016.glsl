@@ -17,6 +17,9 @@
 // Not reproduced: their float hash keys (float(cx + 1549 cy) collapse at metre-scale UVs; an integer hash here) and
 // their per-cell random scaling of the facet count (`variation`, default 100), which raises the mean above the
 // smooth NDF; without it every parameter kept here preserves the mean (docs/zirr2016.md).
+// Extended lights (README "Extended lights"): the paper and the authors' shader know point lights only; an area
+// light's glints are this NDF at its centre direction over the smooth NDF there (the lighting pass's fallback), the
+// sun's and a point light's size (GlintLight) are not read: its search cone alone sets a glint's angular extent.
 
 const int ZIRR_MAX_STEPS = 16;
 const int ZIRR_MAX_PMF_STEPS = 16;
