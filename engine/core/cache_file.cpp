@@ -87,6 +87,21 @@ std::string contentHash(std::string_view bytes) {
     return text;
 }
 
+ContentHasher::ContentHasher() : crc_(crc32_z(0, nullptr, 0)), adler_(adler32_z(0, nullptr, 0)) {}
+
+ContentHasher& ContentHasher::add(const void* bytes, size_t size) {
+    const Bytef* data = static_cast<const Bytef*>(bytes);
+    crc_ = crc32_z(crc_, data, size);
+    adler_ = adler32_z(adler_, data, size);
+    return *this;
+}
+
+std::string ContentHasher::digest() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%08lx%08lx", crc_ & 0xFFFFFFFFul, adler_ & 0xFFFFFFFFul);
+    return text;
+}
+
 std::string fileContentHash(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return "";

@@ -32,6 +32,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace glimmer::cache {
 
@@ -43,6 +44,26 @@ struct CacheKey {
 
 // A cheap, stable 64-bit digest for keys: CRC-32 and Adler-32 of `bytes` (zlib) side by side, as 16 hex digits.
 std::string contentHash(std::string_view bytes);
+// contentHash of many pieces fed one at a time (no concatenated copy of large inputs): digest() equals
+// contentHash of the pieces' bytes back to back.
+class ContentHasher {
+public:
+    ContentHasher();
+    ContentHasher& add(const void* bytes, size_t size);
+    ContentHasher& add(std::string_view text) { return add(text.data(), text.size()); }
+    template <typename T>
+    ContentHasher& addVector(const std::vector<T>& values) {   // trivially copyable elements without padding
+        add(uint64_t(values.size()));
+        return add(values.data(), values.size() * sizeof(T));
+    }
+    ContentHasher& add(uint64_t value) { return add(&value, sizeof value); }
+    ContentHasher& add(float value) { return add(&value, sizeof value); }
+    std::string digest() const;
+
+private:
+    unsigned long crc_, adler_;
+};
+
 // contentHash of a file's bytes, or "" when it cannot be read.
 std::string fileContentHash(const std::filesystem::path& path);
 
