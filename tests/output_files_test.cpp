@@ -144,6 +144,29 @@ TEST(CacheFile, UnwritableFolderIsReportedAndNotClaimed) {
     EXPECT_FALSE(cache.load("t.bin", testKey()));
 }
 
+// Bounded caches (the environment's) drop the files no launch has read for the longest time: an entry written
+// long ago but read at every start (the default scene's environment) survives newer writes of other maps.
+TEST(CacheFile, PruningKeepsTheMostRecentlyReadFilesNotTheNewestWritten) {
+    fs::path dir = freshDir("prune");
+    glimmer::cache::CacheDir cache(dir);
+    const auto now = fs::file_time_type::clock::now();
+    for (int i = 0; i < 4; ++i) {
+        std::string name = "env_" + std::to_string(i) + ".bin";
+        ASSERT_TRUE(cache.store(name, testKey(), "abc"));
+        fs::last_write_time(dir / name, now - std::chrono::hours(10 - i));   // env_0 written first
+    }
+    std::ofstream(dir / "other.bin") << "not an env file";
+    fs::last_write_time(dir / "other.bin", now - std::chrono::hours(20));
+    ASSERT_TRUE(cache.load("env_0.bin", testKey()));   // the oldest is read again
+    EXPECT_EQ(cache.pruneLeastRecentlyUsed("env_", ".bin", 3), 1u);
+    EXPECT_TRUE(fs::exists(dir / "env_0.bin"));
+    EXPECT_FALSE(fs::exists(dir / "env_1.bin"));        // the least recently used
+    EXPECT_TRUE(fs::exists(dir / "env_2.bin"));
+    EXPECT_TRUE(fs::exists(dir / "env_3.bin"));
+    EXPECT_TRUE(fs::exists(dir / "other.bin"));          // not matched by the prefix
+    EXPECT_EQ(cache.pruneLeastRecentlyUsed("env_", ".bin", 3), 0u);
+}
+
 TEST(CacheFile, TemporariesOfDeadWritersAreRemovedAndNeverRead) {
     fs::path dir = freshDir("orphans");
     glimmer::cache::CacheDir cache(dir);

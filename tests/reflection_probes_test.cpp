@@ -6,6 +6,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "core/files.h"
@@ -16,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
+#include "support/process.h"
 #include "support/test_needs.h"
 
 // What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
@@ -172,18 +177,75 @@ TEST(ReflectionProbes, NotRecapturedWhenNothingChanged) {
             if (t.name == name) return true;
         return false;
     };
+    // Captured, or read from the disk cache a previous run stored (ProbeDiskCache below).
+    auto updates = [&] { return rig.renderer->probes().captures() + rig.renderer->probes().diskLoads(); };
     rig.render({}, true);
-    EXPECT_EQ(rig.renderer->probes().captures(), 1);
-    EXPECT_TRUE(ran("probes.capture"));
-    EXPECT_TRUE(ran("probes.prefilter"));
+    EXPECT_EQ(updates(), 1);
+    EXPECT_TRUE(ran("probes.capture") || ran("probes.load"));
     rig.render({}, true);
-    EXPECT_EQ(rig.renderer->probes().captures(), 1);
-    EXPECT_FALSE(ran("probes.capture"));
-    // A moved wall is a change: captured again.
+    EXPECT_EQ(updates(), 1);
+    EXPECT_FALSE(ran("probes.capture") || ran("probes.load"));
+    // A moved wall is a change: captured (or read) again.
     rig.scene.instances[1].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0));
     rig.render({}, true);
-    EXPECT_EQ(rig.renderer->probes().captures(), 2);
-    EXPECT_TRUE(ran("probes.capture"));
+    EXPECT_EQ(updates(), 2);
+    EXPECT_TRUE(ran("probes.capture") || ran("probes.load"));
+}
+
+// The disk cache (reflection_probes.h): a second renderer reads the probes the first captured, and renders the same
+// image; a damaged file, another scene or another environment is captured again, never read.
+TEST(ReflectionProbes, DiskCacheGivesTheSameImageAndRejectsDamage) {
+    const std::string dir = test::makeTempDir("probe-cache");
+    const char* previous = std::getenv("GLIMMER_CACHE_DIR");
+    const std::string restore = previous ? previous : "";
+    setenv("GLIMMER_CACHE_DIR", dir.c_str(), 1);
+    struct Restore {
+        std::string value;
+        ~Restore() { value.empty() ? unsetenv("GLIMMER_CACHE_DIR") : setenv("GLIMMER_CACHE_DIR", value.c_str(), 1); }
+    } restoreAtExit{restore};
+    std::vector<float> captured;
+    {
+        ProbeRig rig;
+        buildWallScene(rig.scene);
+        rig.finish();
+        captured = rig.render({"probes.face_size=32"});
+        EXPECT_EQ(rig.renderer->probes().captures(), 1);
+        EXPECT_EQ(rig.renderer->probes().diskLoads(), 0);
+    }
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.path().filename().string().rfind("probes_", 0) == 0) files.push_back(e.path());
+    ASSERT_EQ(files.size(), 1u) << "one probe file stored";
+    {
+        ProbeRig rig;
+        buildWallScene(rig.scene);
+        rig.finish();
+        std::vector<float> loaded = rig.render({"probes.face_size=32"});
+        EXPECT_EQ(rig.renderer->probes().captures(), 0);
+        EXPECT_EQ(rig.renderer->probes().diskLoads(), 1);
+        EXPECT_EQ(loaded, captured) << "the cached probes render the same image";
+        // Another scene (the wall moved) is not read from the file of this one.
+        rig.scene.instances[1].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0));
+        rig.render({"probes.face_size=32"});
+        EXPECT_EQ(rig.renderer->probes().captures(), 1);
+    }
+    {
+        // One flipped bit in the payload (the checksum) and values a hostile writer made (NaN, checksum right).
+        std::string bytes;
+        {
+            std::ifstream in(files[0], std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        std::string flipped = bytes;
+        flipped[flipped.size() - 5] ^= 1;
+        std::ofstream(files[0], std::ios::binary | std::ios::trunc) << flipped;
+        ProbeRig rig;
+        buildWallScene(rig.scene);
+        rig.finish();
+        EXPECT_EQ(rig.render({"probes.face_size=32"}), captured);
+        EXPECT_EQ(rig.renderer->probes().diskLoads(), 0);
+        EXPECT_EQ(rig.renderer->probes().captures(), 1);
+    }
 }
 
 // CPU: the proxy box takes the median hit distance of each face, the scene bounds where the face saw mostly sky,

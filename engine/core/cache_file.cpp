@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
 #include <fstream>
 #include <mutex>
 #include <set>
@@ -86,6 +87,21 @@ std::string contentHash(std::string_view bytes) {
     return text;
 }
 
+ContentHasher::ContentHasher() : crc_(crc32_z(0, nullptr, 0)), adler_(adler32_z(0, nullptr, 0)) {}
+
+ContentHasher& ContentHasher::add(const void* bytes, size_t size) {
+    const Bytef* data = static_cast<const Bytef*>(bytes);
+    crc_ = crc32_z(crc_, data, size);
+    adler_ = adler32_z(adler_, data, size);
+    return *this;
+}
+
+std::string ContentHasher::digest() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%08lx%08lx", crc_ & 0xFFFFFFFFul, adler_ & 0xFFFFFFFFul);
+    return text;
+}
+
 std::string fileContentHash(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return "";
@@ -162,6 +178,8 @@ std::optional<std::string> CacheDir::load(const std::string& name, const CacheKe
     if (uint64_t(in.gcount()) != payloadSize) return reject("truncated payload");
     if (crc(payload) != payloadCrc) return reject("corrupt payload (checksum mismatch)");
     if (validate && !validate(payload)) return reject("values out of range");
+    // Last use, for pruneLeastRecentlyUsed: a read-only folder simply keeps the write time.
+    std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ec);
     return payload;
 }
 
@@ -190,6 +208,23 @@ void CacheDir::removeOrphanedTemporaries(const std::string& name) const {
         long pid = std::strtol(file.c_str() + prefix.size(), nullptr, 10);
         if (!processAlive(pid)) std::filesystem::remove(entry.path(), ec);
     }
+}
+
+size_t CacheDir::pruneLeastRecentlyUsed(const std::string& prefix, const std::string& extension, size_t keep) const {
+    std::error_code ec;
+    std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> files;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0 || entry.path().extension() != extension) continue;
+        std::error_code timeError;
+        auto time = entry.last_write_time(timeError);
+        if (!timeError) files.emplace_back(time, entry.path());
+    }
+    if (files.size() <= keep) return 0;
+    std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    size_t removed = 0;
+    for (size_t i = keep; i < files.size(); ++i) removed += std::filesystem::remove(files[i].second, ec) ? 1 : 0;
+    return removed;
 }
 
 bool CacheDir::store(const std::string& name, const CacheKey& key, std::string_view payload) const {

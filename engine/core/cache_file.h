@@ -21,6 +21,10 @@
 //    no load() reads and which a later store() in the same folder removes once its writer process is gone.
 //  - An unwritable folder is reported once per process and folder; store() then returns false, so the caller
 //    must not claim the result as cached.
+//  - A successful load() marks the file used (its modification time becomes now): caches that keep a bounded
+//    number of files (pruneLeastRecentlyUsed) drop the files no launch has read for the longest time, not the
+//    oldest written. The default scene's environment, read at every start, then stays however many other maps
+//    runs and tests write.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -28,6 +32,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace glimmer::cache {
 
@@ -39,6 +44,26 @@ struct CacheKey {
 
 // A cheap, stable 64-bit digest for keys: CRC-32 and Adler-32 of `bytes` (zlib) side by side, as 16 hex digits.
 std::string contentHash(std::string_view bytes);
+// contentHash of many pieces fed one at a time (no concatenated copy of large inputs): digest() equals
+// contentHash of the pieces' bytes back to back.
+class ContentHasher {
+public:
+    ContentHasher();
+    ContentHasher& add(const void* bytes, size_t size);
+    ContentHasher& add(std::string_view text) { return add(text.data(), text.size()); }
+    template <typename T>
+    ContentHasher& addVector(const std::vector<T>& values) {   // trivially copyable elements without padding
+        add(uint64_t(values.size()));
+        return add(values.data(), values.size() * sizeof(T));
+    }
+    ContentHasher& add(uint64_t value) { return add(&value, sizeof value); }
+    ContentHasher& add(float value) { return add(&value, sizeof value); }
+    std::string digest() const;
+
+private:
+    unsigned long crc_, adler_;
+};
+
 // contentHash of a file's bytes, or "" when it cannot be read.
 std::string fileContentHash(const std::filesystem::path& path);
 
@@ -55,6 +80,10 @@ public:
     // file does not exist, with one warning naming the file and the reason when it exists but is not usable.
     std::optional<std::string> load(const std::string& name, const CacheKey& key, uint64_t expectedSize = 0,
                                     const std::function<bool(std::string_view)>& validate = {}) const;
+
+    // Keeps the `keep` most recently used files whose names start with `prefix` and end with `extension`
+    // (load() and store() mark a file used) and removes the others. Returns how many it removed.
+    size_t pruneLeastRecentlyUsed(const std::string& prefix, const std::string& extension, size_t keep) const;
 
     // Writes `payload` under `key` atomically. Returns false, after one warning per process and folder, when the
     // folder cannot be created or written.

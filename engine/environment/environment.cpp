@@ -160,6 +160,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
             break;
     }
     if (key.str() == activeKey_) return;
+    contentKey_.clear();
 
     if (spec.kind == EnvironmentSpec::Kind::None) {
         sourceCube_.reset();
@@ -181,7 +182,8 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     }
     Stopwatch total;
     std::optional<EnvironmentCache> cache;
-    if (std::string parameters = cacheParameters(spec, sun); !parameters.empty()) {
+    const std::string parameters = cacheParameters(spec, sun);
+    if (!parameters.empty()) {
         cache.emplace(cache::defaultCacheDir(), parameters);
         if (loadFromCache(*cache)) {
             timings_ = {};
@@ -189,6 +191,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
             timings_.cacheHit = true;
             active_ = spec;
             activeKey_ = key.str();
+            contentKey_ = parameters;
             enabled_ = true;
             log::info("environment ", text.empty() ? std::string("procedural") : text, ": read from the cache (",
                       cache->fileName(), ") in ", timings_.totalMs, " ms");
@@ -224,6 +227,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     timings_.totalMs = total.elapsedMs();
     active_ = spec;
     activeKey_ = key.str();
+    contentKey_ = parameters;
     enabled_ = true;
     log::info("environment ", text.empty() ? std::string("procedural") : text, ": load ", timings_.loadMs,
               " ms, cubemap ", timings_.convertMs, " ms, mips ", timings_.mipsMs, " ms, prefilter ",

@@ -98,6 +98,10 @@ public:
     // Throws Error naming the flag and file when an image cannot be read or holds no RGB data.
     void update(const std::string& spec, const SunDescription& sun, const std::string& flag);
     bool enabled() const { return enabled_; }
+    // What the active maps were built from, as the disk cache keys them (the image's bytes or the procedural sky's
+    // sun, the map sizes, the shaders' sources): "" for none or with the cache off (GLIMMER_ENV_CACHE=0). Caches of
+    // data that see the environment (the reflection probes) key on it.
+    const std::string& contentKey() const { return contentKey_; }
     // Uploads the uniform block and binds the textures (units 6-7, block binding 7) for the lighting pass.
     void bind(float intensity, float rotationDegrees);
 
@@ -130,7 +134,7 @@ private:
     gl::Texture sourceCube_, specular_, specularFine_, brdfLut_;
     gl::Buffer uniforms_;
     std::array<glm::vec3, 9> sh_{};
-    std::string activeKey_;
+    std::string activeKey_, contentKey_;
     EnvironmentSpec active_;
     bool enabled_ = false;
     EnvironmentTimings timings_;

@@ -119,16 +119,7 @@ bool EnvironmentCache::store(const std::vector<GLuint>& textures, const std::arr
 }
 
 void EnvironmentCache::pruneOldFiles() const {
-    std::error_code ec;
-    std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> files;
-    for (const auto& entry : std::filesystem::directory_iterator(dir_.path(), ec)) {
-        std::string name = entry.path().filename().string();
-        if (name.rfind("environment_", 0) != 0 || entry.path().extension() != ".bin") continue;
-        files.emplace_back(entry.last_write_time(ec), entry.path());
-    }
-    if (files.size() <= size_t(kMaxFiles)) return;
-    std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (size_t i = size_t(kMaxFiles); i < files.size(); ++i) std::filesystem::remove(files[i].second, ec);
+    dir_.pruneLeastRecentlyUsed("environment_", ".bin", size_t(kMaxFiles));
 }
 
 }  // namespace glimmer

@@ -149,6 +149,43 @@ vec3 areaGlintFactor(GlintPixel glint, GlintSurface s, vec3 h, vec3 wi, vec3 wo)
 #endif
 }
 
+// TAA with taa.stable_glints: the shading frame (normal, tangent) at the unjittered pixel centre, to first order:
+// this pixel's G-buffer frame plus the jitter times its screen derivatives, taken from the neighbours on the same
+// surface (same material, depth within 5%; one-sided at an edge, none across it). A glint lies in a cone of a few
+// hundredths of a radian around h, and at render scale 0.25 the normal of the atrium's spheres turns by about that
+// much across half a pixel: with the jittered normal, sparkles came and went from frame to frame on a still camera
+// (issue 39, measured in docs/window.md). The error left is second order in the jitter.
+vec3 sameSurfaceDerivative(sampler2D frameTexture, ivec2 pixel, ivec2 axis, int materialId, float depth, vec3 centre) {
+    ivec2 size = textureSize(g_depth, 0);
+    vec3 sum = vec3(0.0);
+    float sides = 0.0;
+    for (int side = -1; side <= 1; side += 2) {
+        ivec2 q = pixel + side * axis;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+        float d = texelFetch(g_depth, q, 0).r;
+        if (d <= 0.0 || abs(d - depth) > 0.05 * depth) continue;
+        if (int(texelFetch(g_duvdyMaterial, q, 0).z + 0.5) != materialId) continue;
+        sum += float(side) * (texelFetch(frameTexture, q, 0).xyz - centre);
+        sides += 1.0;
+    }
+    return sides > 0.0 ? sum / sides : vec3(0.0);
+}
+
+void unjitterGlintFrame(inout GlintSurface s, float depth, float handedness) {
+    vec3 n = texelFetch(g_normalAlpha, s.pixel, 0).xyz, t = texelFetch(g_tangentMetallic, s.pixel, 0).xyz;
+    vec2 j = u_jitter.xy;
+    n += j.x * sameSurfaceDerivative(g_normalAlpha, s.pixel, ivec2(1, 0), s.materialId, depth, n) +
+         j.y * sameSurfaceDerivative(g_normalAlpha, s.pixel, ivec2(0, 1), s.materialId, depth, n);
+    t += j.x * sameSurfaceDerivative(g_tangentMetallic, s.pixel, ivec2(1, 0), s.materialId, depth, t) +
+         j.y * sameSurfaceDerivative(g_tangentMetallic, s.pixel, ivec2(0, 1), s.materialId, depth, t);
+    if (dot(n, n) < 1e-8) return;
+    s.n = normalize(n);
+    vec3 tangent = t - s.n * dot(s.n, t);
+    if (dot(tangent, tangent) < 1e-8) return;
+    s.t = normalize(tangent);
+    s.b = handedness * cross(s.n, s.t);
+}
+
 // The pixel as the G-buffer holds it (layout in frame/gbuffer.frag), with what the shading needs of its material.
 struct PixelSurface {
     GlintSurface s;
@@ -199,7 +236,10 @@ PixelSurface readPixelSurface(ivec2 pixel, float depth) {
     // at its unjittered centre: UV, UV derivatives and position (hence the view and light directions) move to
     // the tangent-plane point of the unjittered ray. Coverage, normal and base colour stay jittered, so the
     // geometric edges of glinty surfaces are still anti-aliased.
-    if (p.glinty && u_jitter.z > 0.5) unjitterGlintFootprint(p.s, p.position);
+    if (p.glinty && u_jitter.z > 0.5) {
+        unjitterGlintFrame(p.s, depth, duvdyMaterial.w);
+        unjitterGlintFootprint(p.s, p.position);
+    }
     p.s.position = p.position;
 #if defined(GLINT_SLOPE_COVARIANCE) && !defined(NON_GLINTY_PIXELS)
     if (p.glinty) p.s.slopeCovariance = texelFetch(g_slopeCovariance, pixel, 0).xyz;

@@ -27,6 +27,11 @@ layout(location = 2) uniform float u_feedback;      // lower bound of the curren
 layout(location = 3) uniform float u_clipGamma;     // variance clip box half-size in standard deviations
 layout(location = 4) uniform int u_glintHistory;    // 0: glints are clipped with the rest (comparison only)
 layout(location = 5) uniform float u_glintFeedback; // lower bound of the current frame's weight for glints
+// A still camera (docs/image.md "A still camera"): u_stillIndex k > 0 on the k-th consecutive frame with the same
+// unjittered view (0 while moving); u_stillFrames the jitter cycle's length, after which the history is complete
+// and kept as it is.
+layout(location = 8) uniform int u_stillIndex;
+layout(location = 9) uniform int u_stillFrames;
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_historyBase;
@@ -65,16 +70,33 @@ void main() {
     vec3 base = currentBase, glint = currentGlint;
     if (valid) {
         samples = texelFetch(t_historyBase, clamp(ivec2(previousUv * vec2(size)), ivec2(0), size - 1), 0).a;
-        float weight = max(1.0 / (samples + 1.0), u_feedback);
         vec3 historyBase = sampleHistoryCatmullRom(t_historyBase, previousUv, vec2(size));
-        historyBase = yCoCgToRgb(clipToBox(rgbToYCoCg(historyBase), mean, u_clipGamma * sigma));
-        vec3 historyGlint = min(max(textureLod(t_historyGlint, previousUv, 0.0).rgb, vec3(0.0)), glintMax);
+        vec3 historyGlint = max(textureLod(t_historyGlint, previousUv, 0.0).rgb, vec3(0.0));
+        float weight, glintWeight;
+        if (u_stillIndex > 0) {
+            // Its own texel: the identity reprojection is exact only up to rounding, and a filtered fetch a hair
+            // off the centre would blur the kept history a little more every frame.
+            historyBase = texelFetch(t_historyBase, pixel, 0).rgb;
+            historyGlint = max(texelFetch(t_historyGlint, pixel, 0).rgb, vec3(0.0));
+            // The history is this pixel's own (the reprojection is the identity, nothing was disoccluded): the plain
+            // mean of the still frames' jitter phases, the motion's history counting as one frame, with neither
+            // clipping nor a weight floor; after a whole jitter cycle it is complete and stays as it is. With the
+            // floor the history followed each jittered frame with weight u_feedback (u_glintFeedback for glints)
+            // and a still camera's glinty pixels kept changing (issue 39).
+            weight = u_stillIndex > u_stillFrames ? 0.0 : 1.0 / (min(samples, float(u_stillIndex)) + 1.0);
+            glintWeight = weight;
+        } else {
+            weight = max(1.0 / (samples + 1.0), u_feedback);
+            glintWeight = max(weight, u_glintFeedback);
+            historyBase = yCoCgToRgb(clipToBox(rgbToYCoCg(historyBase), mean, u_clipGamma * sigma));
+            historyGlint = min(historyGlint, glintMax);
+        }
         base = mix(historyBase, currentBase, weight);
-        glint = mix(historyGlint, currentGlint, max(weight, u_glintFeedback));
+        glint = mix(historyGlint, currentGlint, glintWeight);
     }
     base = finiteOrZero(max(base, vec3(0.0)));
     glint = finiteOrZero(max(glint, vec3(0.0)));
-    o_historyBase = vec4(base, min(samples + 1.0, 1.0 / u_feedback));
+    o_historyBase = vec4(base, min(samples + 1.0, u_stillIndex > 0 ? float(u_stillFrames + 1) : 1.0 / u_feedback));
     o_historyGlint = vec4(glint, 1.0);
     o_resolved = vec4(base + glint, currentRgba.a);   // alpha: coverage, as the lighting pass's
 }

@@ -35,6 +35,9 @@ layout(location = 4) uniform int u_glintHistory;    // 0: glints are clipped wit
 layout(location = 5) uniform float u_glintFeedback; // lower bound of the current frame's weight for glints
 layout(location = 6) uniform vec2 u_jitter;         // this frame's jitter, internal pixels
 layout(location = 7) uniform float u_kernelWidth;   // reconstruction kernel width for accumulation, output pixels
+// A still camera, as in taa_resolve.frag: the k-th still frame (0: moving) and the jitter cycle's length.
+layout(location = 8) uniform int u_stillIndex;
+layout(location = 9) uniform int u_stillFrames;
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_historyBase;
@@ -80,16 +83,30 @@ void main() {
     // The nearest sample's weight is at least exp(-2.29 * 0.5 * ratio^2 / width^2) > 0: no division by zero.
     vec3 currentBase = sumBase / max(weight, 1e-30), currentGlint = sumGlint / max(weight, 1e-30);
 
-    float frames = confidence, maxFrames = 1.0 / u_feedback;
+    float frames = confidence, maxFrames = u_stillIndex > 0 ? float(u_stillFrames + 1) : 1.0 / u_feedback;
     vec3 base = currentBase, glint = currentGlint;
     if (valid) {
         frames = texelFetch(t_historyBase, clamp(ivec2(previousUv * vec2(outputSize)), ivec2(0), outputSize - 1), 0).a;
-        float blend = confidence / max(min(frames + confidence, maxFrames), 1e-6);
         vec3 historyBase = sampleHistoryCatmullRom(t_historyBase, previousUv, vec2(outputSize));
-        historyBase = yCoCgToRgb(clipToBox(rgbToYCoCg(historyBase), mean, u_clipGamma * sigma));
-        vec3 historyGlint = min(max(textureLod(t_historyGlint, previousUv, 0.0).rgb, vec3(0.0)), glintMax);
+        vec3 historyGlint = max(textureLod(t_historyGlint, previousUv, 0.0).rgb, vec3(0.0));
+        float blend, glintBlend;
+        if (u_stillIndex > 0) {
+            // Its own texel, not a filtered fetch at the (rounded) identity reprojection (taa_resolve.frag).
+            historyBase = texelFetch(t_historyBase, ivec2(gl_FragCoord.xy), 0).rgb;
+            historyGlint = max(texelFetch(t_historyGlint, ivec2(gl_FragCoord.xy), 0).rgb, vec3(0.0));
+            // Still: the weighted mean of the still frames (the motion's history counting as one frame), complete and
+            // kept after a whole jitter cycle (taa_resolve.frag).
+            float held = min(frames, float(u_stillIndex));
+            blend = u_stillIndex > u_stillFrames ? 0.0 : confidence / max(held + confidence, 1e-6);
+            glintBlend = blend;
+        } else {
+            blend = confidence / max(min(frames + confidence, maxFrames), 1e-6);
+            glintBlend = max(blend, u_glintFeedback * confidence);
+            historyBase = yCoCgToRgb(clipToBox(rgbToYCoCg(historyBase), mean, u_clipGamma * sigma));
+            historyGlint = min(historyGlint, glintMax);
+        }
         base = mix(historyBase, currentBase, blend);
-        glint = mix(historyGlint, currentGlint, max(blend, u_glintFeedback * confidence));
+        glint = mix(historyGlint, currentGlint, glintBlend);
         frames = min(frames + confidence, maxFrames);
     }
     base = finiteOrZero(max(base, vec3(0.0)));

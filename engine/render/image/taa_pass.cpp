@@ -110,10 +110,13 @@ glm::vec2 TaaPass::beginFrame(const glm::mat4& unjitteredViewProjection, glm::ve
         reset();
     previousPosition_ = cameraPosition;
     previousForward_ = glm::normalize(forward);
+    // Still: the same unjittered view as the last frame (the window's camera does not move without input).
+    stillIndex_ = framesSinceReset_ > 0 && unjitteredViewProjection == viewProjection_ ? stillIndex_ + 1 : 0;
     previousViewProjection_ = framesSinceReset_ == 0 ? unjitteredViewProjection : viewProjection_;
     viewProjection_ = unjitteredViewProjection;
     const float ratio = std::max(float(outputWidth) / float(width), float(outputHeight) / float(height));
-    jitter_ = image::haltonJitter(framesSinceReset_, image::jitterPhases(ratio));
+    phases_ = image::jitterPhases(ratio);
+    jitter_ = image::haltonJitter(framesSinceReset_, phases_);
     return jitter_;
 }
 
@@ -143,6 +146,8 @@ void TaaPass::execute(const FrameContext& frame) {
     glProgramUniform1f(program.id(), 3, 1.25f);   // variance clip box half-size, standard deviations (Salvi 2016)
     glProgramUniform1i(program.id(), 4, frame.settings.value(param::taa_glint_history) > 0.5f ? 1 : 0);
     glProgramUniform1f(program.id(), 5, frame.settings.value(param::taa_glint_feedback));
+    glProgramUniform1i(program.id(), 8, int(std::min(stillIndex_, 1u << 20)));
+    glProgramUniform1i(program.id(), 9, phases_);
     if (upsampling) {
         glProgramUniform2f(program.id(), 6, jitter_.x, jitter_.y);
         glProgramUniform1f(program.id(), 7, kUpsampleKernelWidth);

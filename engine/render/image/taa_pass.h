@@ -43,6 +43,13 @@ public:
 
     // Reconstruction kernel width of the upsampling resolve, in output pixels (measured: docs/image.md).
     static constexpr float kUpsampleKernelWidth = 1.0f;
+    // A still camera (the unjittered view equals the last frame's) accumulates the plain mean of its frames, without
+    // rectification or the feedback floor, and after one whole jitter cycle keeps the history as it is: a still
+    // image. With the floor the history followed each jittered frame with weight taa.feedback (glints:
+    // taa.glint_feedback) and glinty pixels changed by more than 10% between frames (issue 39; docs/image.md
+    // "A still camera"). Moving again, the usual resolve resumes at once.
+    bool converged() const { return stillIndex_ > unsigned(phases_); }
+    unsigned stillFrames() const { return stillIndex_; }
 
 private:
     // Starts a frame rendered at width x height and resolved at outputWidth x outputHeight (>= the render size):
@@ -58,6 +65,8 @@ private:
     unsigned resets_ = 0;
     glm::vec2 jitter_{0.0f};
     unsigned framesSinceReset_ = 0;
+    unsigned stillIndex_ = 0;   // k-th consecutive frame with the same unjittered view (0: moved, reset)
+    int phases_ = 16;           // jitter cycle of the current upscale ratio
     int current_ = 0;   // ping-pong index of the history written this frame
     glm::mat4 viewProjection_{1.0f}, previousViewProjection_{1.0f};
     glm::vec3 previousPosition_{0.0f}, previousForward_{0.0f, 0.0f, -1.0f};

@@ -11,7 +11,9 @@ void ProbesPass::prepare(PrepareContext& context) {
     if (active) {
         ReflectionProbes::Update update = probes_.update(context.scene, context.gpuScene, context.environment,
                                                          context.settings);
-        if (update.ran) {
+        if (update.fromDisk) {
+            context.recordOnDemand("probes.load", update.loadMs);
+        } else if (update.ran) {
             context.recordOnDemand("probes.capture", update.captureMs);
             context.recordOnDemand("probes.prefilter", update.prefilterMs);
         }

@@ -1,6 +1,6 @@
 // The reflection probes' place in the frame (render/probes/reflection_probes.h): prepare() captures and prefilters
 // them when something they see changed (listed as probes.capture and probes.prefilter in --stats and the window's
-// edit line) and publishes FrameResource::ReflectionProbes: the probes for IBL modes that read them
+// edit line, or probes.load when read from the disk cache) and publishes FrameResource::ReflectionProbes: the probes for IBL modes that read them
 // (IblMode::readsProbes) with probes.enabled, else a block with none. It draws nothing in the frame itself.
 #pragma once
 #include <filesystem>

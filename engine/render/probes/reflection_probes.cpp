@@ -2,9 +2,14 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
 #include <sstream>
 
+#include "core/cache_file.h"
 #include "core/clock.h"
 #include "core/log.h"
 #include "glints/methods.h"
@@ -13,6 +18,7 @@
 #include "environment/environment.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "scene/scene_hash.h"
 
 namespace glimmer {
 
@@ -90,12 +96,23 @@ ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuS
     Update timings;
     probes_.clear();
     if (!ps.enabled || ps.maxProbes == 0 || !environment.enabled()) return timings;
+    Stopwatch clock;
+    const std::string disk = diskKey(scene, environment, ps);
+    if (!disk.empty() && loadFromDisk(disk, scene, ps.faceSize)) {
+        timings.ran = timings.fromDisk = true;
+        timings.loadMs = clock.elapsedMs();
+        last_ = timings;
+        ++diskLoads_;
+        log::info("reflection probes: ", probes_.size(), " read from the cache in ", timings.loadMs, " ms");
+        return timings;
+    }
     capture(scene, gpuScene, environment, settings, ps, timings);
     timings.ran = true;
     last_ = timings;
     ++captures_;
     log::info("reflection probes: ", probes_.size(), " captured at ", ps.faceSize, "^2, capture ", timings.captureMs,
               " ms, prefilter ", timings.prefilterMs, " ms");
+    if (!disk.empty() && !probes_.empty()) storeToDisk(disk);
     return timings;
 }
 
@@ -189,11 +206,8 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
         specular_.reset();
         return;
     }
-    GLuint array = 0;
-    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    specular_ = gl::Texture(array);
-    glTextureStorage3D(array, kLevels, GL_RGBA32F, size, size, GLsizei(6 * 2 * probes_.size()));
-    setCubeSampling(array);
+    allocateArray(size, probes_.size());
+    const GLuint array = specular_.id();
     // Only the NDFs some material uses are prefiltered (the key holds the materials: a change re-captures).
     unsigned ndfMask = 0;
     for (const Material& m : scene.materials) ndfMask |= 1u << std::clamp(int(m.ndf), 0, 1);
@@ -208,7 +222,20 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
     }
     glFinish();
     timings.prefilterMs = clock.elapsedMs();
+    uploadProbeBlock();
+}
 
+void ReflectionProbes::allocateArray(int size, size_t count) {
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
+    specular_ = gl::Texture(array);
+    glTextureStorage3D(array, kLevels, GL_RGBA32F, size, size, GLsizei(6 * 2 * count));
+    setCubeSampling(array);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int level = 0; level < kLevels; ++level) glClearTexImage(array, level, GL_RGBA, GL_FLOAT, zero);
+}
+
+void ReflectionProbes::uploadProbeBlock() {
     ProbeUniforms u{};
     u.params = {float(probes_.size()), float(kLevels - 1), 0.0f, 0.0f};
     for (size_t p = 0; p < probes_.size(); ++p) {
@@ -220,6 +247,141 @@ void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Env
         u.probes[p].proxyMax = glm::vec4(probe.proxy.max, 0.0f);
     }
     glNamedBufferSubData(probeBlock_.id(), 0, sizeof(u), &u);
+}
+
+bool ReflectionProbes::diskCacheEnabled() {
+    const char* v = std::getenv("GLIMMER_PROBE_CACHE");
+    return !(v && std::string(v) == "0");
+}
+
+namespace {
+constexpr uint32_t kProbeCacheLayout = 1;   // bump when the payload below or the capture changes
+constexpr size_t kRecordFloats = 18;        // per probe: position, fade, influence min / max, excluded, proxy, coverage
+
+// Every file under the shader root, by relative path and bytes.
+std::string shaderFolderHash(const std::filesystem::path& root) {
+    std::vector<std::filesystem::path> files;
+    std::error_code ec;
+    for (auto it = std::filesystem::recursive_directory_iterator(root, ec); !ec && it != std::filesystem::end(it);
+         it.increment(ec))
+        if (it->is_regular_file(ec)) files.push_back(it->path());
+    std::sort(files.begin(), files.end());
+    cache::ContentHasher hash;
+    for (const auto& file : files) {
+        hash.add(std::filesystem::relative(file, root, ec).generic_string());
+        hash.add(cache::fileContentHash(file));
+    }
+    return hash.digest();
+}
+
+size_t arrayFloats(int faceSize, size_t count) {
+    size_t floats = 0;
+    for (int level = 0; level < ReflectionProbes::kLevels; ++level) {
+        size_t side = size_t(std::max(faceSize >> level, 1));
+        floats += side * side * 6 * 2 * count * 4;
+    }
+    return floats;
+}
+}  // namespace
+
+std::string ReflectionProbes::diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& ps) {
+    if (!diskCacheEnabled() || environment.contentKey().empty()) return "";
+    if (shaderHash_.empty()) shaderHash_ = shaderFolderHash(shaderRoot_);
+    std::ostringstream key;
+    key.precision(9);
+    key << "face " << ps.faceSize << " max " << ps.maxProbes << " levels " << kLevels << " | settings";
+    // The in-memory key (probe settings, meshes, instances, materials, lights, sky, every common parameter, what
+    // update() compares between frames), hashed: its text would grow with the instance count.
+    key << ' ' << cache::contentHash({reinterpret_cast<const char*>(key_.data()), key_.size() * sizeof(float)});
+    key << " | scene " << sceneContentHash(scene) << " | environment " << cache::contentHash(environment.contentKey())
+        << " | shaders " << shaderHash_;
+    return key.str();
+}
+
+bool ReflectionProbes::loadFromDisk(const std::string& key, const Scene& scene, int faceSize) {
+    cache::CacheDir dir(cache::defaultCacheDir());
+    const cache::CacheKey cacheKey{"reflection-probes", kProbeCacheLayout, key};
+    const std::string name = "probes_" + cache::contentHash(key) + ".bin";
+    auto countOf = [](std::string_view payload) {
+        float count = 0.0f;
+        if (payload.size() >= sizeof count) std::memcpy(&count, payload.data(), sizeof count);
+        return count;
+    };
+    auto validate = [&](std::string_view payload) {
+        const float count = countOf(payload);
+        if (!(count >= 1.0f && count <= float(kMaxReflectionProbes)) || count != std::floor(count)) return false;
+        const size_t probes = size_t(count);
+        if (payload.size() != (1 + probes * kRecordFloats + arrayFloats(faceSize, probes)) * sizeof(float)) return false;
+        const size_t floats = payload.size() / sizeof(float);
+        for (size_t i = 0; i < floats; ++i) {
+            float v;
+            std::memcpy(&v, payload.data() + i * sizeof v, sizeof v);
+            if (!std::isfinite(v)) return false;
+            const size_t texel = i - (1 + probes * kRecordFloats);
+            // Radiance >= 0; coverage (alpha) <= 1 up to the prefilter's overshoot (at most 1.019 measured).
+            if (i > probes * kRecordFloats && (v < 0.0f || (texel % 4 == 3 && v > 1.1f))) return false;
+        }
+        for (size_t p = 0; p < probes; ++p) {
+            float excluded, coverage;
+            std::memcpy(&excluded, payload.data() + (1 + p * kRecordFloats + 10) * sizeof(float), sizeof excluded);
+            std::memcpy(&coverage, payload.data() + (1 + p * kRecordFloats + 17) * sizeof(float), sizeof coverage);
+            if (excluded < -1.0f || excluded >= float(scene.instances.size()) || !(coverage > 0.0f && coverage <= 1.0f))
+                return false;
+        }
+        return true;
+    };
+    std::optional<std::string> payload = dir.load(name, cacheKey, 0, validate);
+    if (!payload) return false;
+    const size_t count = size_t(countOf(*payload));
+    const float* values = reinterpret_cast<const float*>(payload->data()) + 1;
+    std::vector<Probe> loaded(count);
+    for (size_t p = 0; p < count; ++p, values += kRecordFloats) {
+        const float* r = values;
+        Probe& probe = loaded[p];
+        probe.placement.position = {r[0], r[1], r[2]};
+        probe.placement.fade = r[3];
+        probe.placement.influence = {{r[4], r[5], r[6]}, {r[7], r[8], r[9]}};
+        probe.placement.excludedInstance = int(r[10]);
+        probe.proxy = {{r[11], r[12], r[13]}, {r[14], r[15], r[16]}};
+        probe.coverage = r[17];
+    }
+    probes_ = std::move(loaded);
+    faceSize_ = faceSize;
+    allocateArray(faceSize, count);
+    for (int level = 0; level < kLevels; ++level) {
+        const int side = std::max(faceSize >> level, 1);
+        glTextureSubImage3D(specular_.id(), level, 0, 0, 0, side, side, GLsizei(6 * 2 * count), GL_RGBA, GL_FLOAT,
+                            values);
+        values += size_t(side) * size_t(side) * 6 * 2 * count * 4;
+    }
+    uploadProbeBlock();
+    return true;
+}
+
+void ReflectionProbes::storeToDisk(const std::string& key) const {
+    const size_t count = probes_.size();
+    std::vector<float> payload;
+    payload.reserve(1 + count * kRecordFloats + arrayFloats(faceSize_, count));
+    payload.push_back(float(count));
+    for (const Probe& probe : probes_) {
+        const ProbePlacement& p = probe.placement;
+        payload.insert(payload.end(), {p.position.x, p.position.y, p.position.z, p.fade, p.influence.min.x,
+                                       p.influence.min.y, p.influence.min.z, p.influence.max.x, p.influence.max.y,
+                                       p.influence.max.z, float(p.excludedInstance), probe.proxy.min.x,
+                                       probe.proxy.min.y, probe.proxy.min.z, probe.proxy.max.x, probe.proxy.max.y,
+                                       probe.proxy.max.z, probe.coverage});
+    }
+    for (int level = 0; level < kLevels; ++level) {
+        const int side = std::max(faceSize_ >> level, 1);
+        const size_t at = payload.size(), floats = size_t(side) * size_t(side) * 6 * 2 * count * 4;
+        payload.resize(at + floats);
+        glGetTextureImage(specular_.id(), level, GL_RGBA, GL_FLOAT, GLsizei(floats * sizeof(float)), payload.data() + at);
+    }
+    cache::CacheDir dir(cache::defaultCacheDir());
+    const std::string name = "probes_" + cache::contentHash(key) + ".bin";
+    if (dir.store(name, {"reflection-probes", kProbeCacheLayout, key},
+                  {reinterpret_cast<const char*>(payload.data()), payload.size() * sizeof(float)}))
+        dir.pruneLeastRecentlyUsed("probes_", ".bin", kMaxCacheFiles);
 }
 
 FrameImage ReflectionProbes::image(bool active) const {

@@ -11,6 +11,15 @@
 // faces as views of a renderer of its own (Renderer::renderView with FrameKind::Capture: the G-buffer and lighting
 // passes, the default method and IBL mode, probes off: no probe sees another probe), culled per face by GpuScene's
 // chunks, then reads back colour and depth to zero the sky, fit the proxy box and upload the cube.
+//
+// Disk cache (core/cache_file.h): a capture is the same on every launch of the same scene, so the prefiltered array
+// and the probes' placements are stored under a key of everything they depend on: the scene's content
+// (scene/scene_hash.h), the environment's content key (Environment::contentKey), the probe settings and every
+// common parameter, and the bytes of every file under the shader root (any shader edit recaptures: simpler than
+// listing the capture renderer's and the prefilter's files, and as safe). Loaded only when the size matches the
+// stored probe count and every value is finite, the radiance non-negative and the coverage in [0, 1.1] (the prefilter overshoots 1 by up to 2%); written
+// atomically; the folder keeps the kMaxCacheFiles most recently used probe files. GLIMMER_PROBE_CACHE=0 turns it
+// off (timing the capture itself), and so does an environment without a content key.
 #pragma once
 #include "common/bindings.glsl"
 #include <glm/glm.hpp>
@@ -70,9 +79,13 @@ public:
     ~ReflectionProbes();
 
     struct Update {
-        bool ran = false;
+        bool ran = false;                            // the probes changed (captured, or read from the disk cache)
+        bool fromDisk = false;                       // read from the disk cache: loadMs, no capture
         double captureMs = 0.0, prefilterMs = 0.0;   // wall clock around glFinish
+        double loadMs = 0.0;
     };
+    static constexpr size_t kMaxCacheFiles = 4;
+    static bool diskCacheEnabled();   // GLIMMER_PROBE_CACHE != 0
     // Re-captures and prefilters the probes when anything they see changed since the last capture. The
     // environment must be prepared for `scene`. Leaves the frame uniform blocks bound to its own buffers.
     Update update(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
@@ -88,6 +101,7 @@ public:
     };
     const std::vector<Probe>& probes() const { return probes_; }   // the captured ones (coverage > 0)
     int captures() const { return captures_; }                       // how many times update() captured
+    int diskLoads() const { return diskLoads_; }                     // ... and read the disk cache instead
     GLuint specularArray() const { return specular_.id(); }
     int faceSize() const { return faceSize_; }
     nlohmann::json stats() const;
@@ -95,6 +109,13 @@ public:
 private:
     void capture(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
                  const RenderSettings& settings, const ProbeSettings& probeSettings, Update& timings);
+    // The disk cache's key parameters ("" = not cached) and its load / store.
+    std::string diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& probeSettings);
+    bool loadFromDisk(const std::string& key, const Scene& scene, int faceSize);
+    void storeToDisk(const std::string& key) const;
+    // Allocates the prefiltered array for `count` probes of `size` and clears it (levels of an unused NDF stay 0).
+    void allocateArray(int size, size_t count);
+    void uploadProbeBlock();
 
     std::filesystem::path shaderRoot_;
     std::unique_ptr<Renderer> renderer_;   // renders the captures (built on the first one)
@@ -106,7 +127,8 @@ private:
     std::vector<float> key_;
     std::string keyText_;
     bool captured_ = false;
-    int captures_ = 0;
+    int captures_ = 0, diskLoads_ = 0;
+    std::string shaderHash_;   // of every file under shaderRoot_ (computed on the first disk-cache key)
     Update last_;
 };
 
