@@ -58,9 +58,17 @@ TEST(DiscreteFacets, LobeQuadrature) {
     EXPECT_NEAR(cone.lobeSolidAngle(h), 2.0 * kPi * (1.0 - std::cos(m.gamma)), 1e-10);
     double small = kPi * m.gamma * m.gamma * cone.smoothD(h) * h.z;
     EXPECT_NEAR(cone.lobeProbability(h) / small, 1.0, 2e-3);
+    // The table estimate() reads: P / (D (h.n)) within 1e-4 of the quadrature, isotropic and anisotropic, from the
+    // pole to grazing half vectors.
+    for (double theta : {0.0, 0.1, 0.37, 0.8, 1.3})
+        EXPECT_NEAR(cone.lobeRatio(halfVector(theta, 0.3)) * cone.smoothD(halfVector(theta, 0.3)) * halfVector(theta, 0.3).z /
+                        cone.lobeProbability(halfVector(theta, 0.3)), 1.0, 1e-4) << theta;
     m.anisotropy = 9.0;
     FacetEstimator stretched(m);
     EXPECT_NEAR(stretched.lobeSolidAngle(h) / (kPi * m.gamma * m.gamma), 1.0, 1e-3);
+    for (double phi : {0.0, 0.5, 2.9})
+        EXPECT_NEAR(stretched.lobeRatio(halfVector(0.4, phi)) * stretched.smoothD(halfVector(0.4, phi)) *
+                        halfVector(0.4, phi).z / stretched.lobeProbability(halfVector(0.4, phi)), 1.0, 1e-3) << phi;
     m.anisotropy = 1.0;
     m.lobe = Lobe::Gaussian;
     FacetEstimator gaussian(m);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -591,6 +592,15 @@ TEST(Environment, SplitSumOnSharedMapsAgainstQuadrature) {
         if (entry.path().extension() == ".hdr" || entry.path().extension() == ".exr") maps.push_back(entry.path());
     std::sort(maps.begin(), maps.end());
     ASSERT_FALSE(maps.empty());
+    // CI keeps the two maps that bound the errors (studio_small_03: the worst lookup, a small bright lamp;
+    // rooitou_park: a wide sky); GLIMMER_MEASURE=1 runs all five (about 110 s on 2 cores).
+    if (!std::getenv("GLIMMER_MEASURE")) {
+        std::vector<fs::path> bounding;
+        for (const fs::path& map : maps)
+            if (map.filename().string().rfind("studio_small_03", 0) == 0 || map.filename().string().rfind("rooitou_park", 0) == 0)
+                bounding.push_back(map);
+        if (!bounding.empty()) maps = bounding;
+    }
     auto mean = [](glm::dvec3 c) { return (c.x + c.y + c.z) / 3.0; };
     double worstRung = 0.0, worstLookup = 0.0;
     for (const fs::path& map : maps) {

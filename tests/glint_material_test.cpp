@@ -163,6 +163,7 @@ TEST(GlintMapping, FormulasMatchHandValues) {
     EXPECT_NEAR(d["log_density"], 13.592367, 1e-4);
     EXPECT_FLOAT_EQ(d["density_randomization"], 0.0f);
     EXPECT_FLOAT_EQ(d["gate"], 1.0f);
+    EXPECT_FLOAT_EQ(d["angular_grid"], 1.0f);   // lobe: glints live as long in angle as the material's
     EXPECT_NEAR(materialParams(findGlintMethod("deliot2023"), m, {{"density_randomization", 1.0f}})["log_density"],
                 13.092367, 1e-4);
     EXPECT_NEAR(d["microfacet_roughness"], 0.0025, 1e-7);       // (0.015 / 0.3)^2

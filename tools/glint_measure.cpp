@@ -178,6 +178,7 @@ int run(int argc, char** argv) {
                 }
             }
             std::fflush(stdout);
+            if (json.is_open()) json.flush();   // a run cut short keeps every finished view
         }
         if (o.lifespan)
             for (double gamma : o.gammas) {

@@ -17,6 +17,7 @@ param: angular_blend = smoothstep in {bilinear, smoothstep}: weights of the 4 an
 map: log_density = ln(0.2 density_per_uv) - density_randomization^2/2
 map: microfacet_roughness = (angular_size)^2 alpha^-2
 map: density_randomization = 0
+map: angular_grid = 1
 map: gate = 1
 */
 // An example of a user glint method (docs/user_methods.md): the built-in deliot2023 with one change, the

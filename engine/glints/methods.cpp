@@ -82,6 +82,11 @@ static GlintMethod deliot2023Method() {
         {"density_randomization", GlintQuantity::Density, 0.0f, 0.0f, 0.0f, false,
          "0: the authors' per-vertex log-normal count is a clumping device of their code, not a quantity of the "
          "material (issue 36); --set deliot2023.density_randomization=2 restores it"},
+        {"angular_grid", GlintQuantity::Density, 1.0f, 0.0f, 0.0f, false,
+         "lobe: Eq. 14's cell holds the fraction R of the lobe, sqrt(R / D(n)) = gamma sqrt(pi) wide, about the "
+         "facets' own cone, so a glint lives as long in angle as the material's (plane90, gamma 0.015: the "
+         "correlation halves after 7.5 degrees of light turn, the discrete-facet reference's after 5.0; the "
+         "authors' projected cell, R wide, after 0.73); --set deliot2023.angular_grid=projected restores it"},
         {"gate", GlintQuantity::Density, 1.0f, 0.0f, 0.0f, false,
          "hard (Eq. 18 as printed): the authors' soft gate lights sparse pixels at partial counts, a smoothing "
          "device; the hard gate's dark fraction is the material's closer (docs/glint_statistics.md); --set "

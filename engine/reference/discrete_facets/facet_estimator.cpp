@@ -188,7 +188,9 @@ FacetEstimate FacetEstimator::estimate(const PixelFootprint& fp, const glm::dvec
     FacetEstimate result;
     if (h.z <= 0.0) return result;
     const double rho = material().densityPerUv;
-    const double d = smoothD(h), p = lobeProbability(h);
+    // P(h) from the tabulated P / (D (h.n)) (lobeRatio, within 1e-4 of the quadrature, built once per material):
+    // the quadrature's 256 NDF evaluations per pixel and light were most of an image's cost at sparse densities.
+    const double d = smoothD(h), p = lobeRatio(h) * d * h.z;
     if (!(rho > 0.0) || !(p > 0.0)) return result;
     const FootprintTest footprint = footprintTest(fp);
     if (!footprint.valid) return result;

@@ -79,8 +79,9 @@ public:
     double lobeProbability(const glm::dvec3& h) const;
     // Solid angle of the lobe, int K(m; h) dm (the same quadrature).
     double lobeSolidAngle(const glm::dvec3& h) const;
-    // P(h) / (D(h) (h.n)) from a table over h's polar angle (and azimuth when anisotropic), built on first use:
-    // the environment's many half vectors (environment_glints.h). Within 1e-4 of the quadrature.
+    // P(h) / (D(h) (h.n)) from a table over h's polar angle (and azimuth when anisotropic), built on first use
+    // (512 polar nodes, 64 azimuths when anisotropic), used by estimate() and the environment's many half vectors
+    // (environment_glints.h). Within 1e-4 of the quadrature (tested).
     double lobeRatio(const glm::dvec3& h) const;
 
     // The footprint's filter, set up once per pixel: weight(uv) integrates to 1 over UV, 0 outside; lo / hi bound
