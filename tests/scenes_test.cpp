@@ -516,10 +516,11 @@ TEST(ScenesFile, NamesResolveToContentFilesThenBuiltins) {
     EXPECT_EQ(glimmer::loadScene("plane90").name, "plane90") << "generated scenes keep working";
     std::vector<std::string> content = glimmer::contentSceneNames();
     EXPECT_NE(std::find(content.begin(), content.end(), "atrium"), content.end());
-    // "atrium" is content/atrium.json on top of the generator: same geometry, the file's cameras and lights.
+    // "atrium" is content/atrium.json on top of the generator: its geometry plus the file's one mesh (the arcade's rect
+    // light panel, a box of 12 triangles with its own material), the file's cameras and lights.
     Scene generated = glimmer::makeBuiltinScene("atrium"), described = glimmer::loadScene("atrium");
-    EXPECT_EQ(generated.triangleCount(), described.triangleCount());
-    EXPECT_EQ(generated.materials.size(), described.materials.size());
+    EXPECT_EQ(generated.triangleCount() + 12, described.triangleCount());
+    EXPECT_EQ(generated.materials.size() + 1, described.materials.size());
     EXPECT_EQ(generated.cameras.size(), 1u);
     EXPECT_GT(described.cameras.size(), generated.cameras.size());
     EXPECT_THROW(glimmer::loadScene("no_such_scene"), glimmer::UsageError);
@@ -562,23 +563,25 @@ TEST(ScenesAtrium, CountsMatchTheLayout) {
     // boxes; arches: 24 soffit segments per bay. Check the stonework holds at least the shafts and soffits.
     const size_t bays = size_t(2 * (kLongBays + kShortBays)), storeys = 2;
     EXPECT_GE(meshNamed(s, "stonework").triangleCount(), storeys * (kColumnsPerStorey * 40 + bays * 24 * 2));
-    EXPECT_EQ(s.meshes.size(), 11u);
-    // Meshes: floor, walls, stonework, snow, 3 drapes, relief, vase, egg, sphere. Instances: the first 8 once,
-    // 4 vases, 2 eggs, 1 sphere.
-    EXPECT_EQ(s.instances.size(), 15u);
+    EXPECT_EQ(s.meshes.size(), 12u);
+    // Meshes: floor, walls, stonework, snow, 3 drapes, relief, vase, egg, sphere, and content/atrium.json's rect
+    // light panel over the arcade. Instances: the first 8 once, 4 vases, 2 eggs, 1 sphere, the panel.
+    EXPECT_EQ(s.instances.size(), 16u);
     EXPECT_GT(s.triangleCount(), 50000u);
     EXPECT_LT(s.triangleCount(), 300000u) << "budget: llvmpipe renders 512x512 well under a second";
 
     std::set<std::string> glinty, matte;
     for (const glimmer::Material& m : s.materials) (m.glinty ? glinty : matte).insert(m.name);
     EXPECT_EQ(glinty, (std::set<std::string>{"snow", "car_paint_red", "car_paint_blue", "drape_red", "drape_blue", "drape_green"}));
-    EXPECT_EQ(matte, (std::set<std::string>{"ashlar", "stone", "floor_tiles", "bronze", "terracotta"}));
+    EXPECT_EQ(matte, (std::set<std::string>{"ashlar", "stone", "floor_tiles", "bronze", "terracotta", "light_panel"}));
     EXPECT_EQ(s.textures.size(), 3u);
 
-    // A sun and a few point lights; at least five named cameras, all on the walkthrough path.
+    // A sun, the lanterns as sphere lights and the arcade's rect light; at least five named cameras, all on the
+    // walkthrough path.
     ASSERT_FALSE(s.lights.empty());
     EXPECT_EQ(s.lights[0].type, glimmer::LightType::Directional);
-    EXPECT_GE(std::count_if(s.lights.begin(), s.lights.end(), [](const glimmer::Light& l) { return l.type == glimmer::LightType::Point; }), 2);
+    EXPECT_GE(std::count_if(s.lights.begin(), s.lights.end(), [](const glimmer::Light& l) { return l.type == glimmer::LightType::Sphere; }), 2);
+    EXPECT_EQ(std::count_if(s.lights.begin(), s.lights.end(), [](const glimmer::Light& l) { return l.type == glimmer::LightType::Rect; }), 1);
     EXPECT_GE(s.cameras.size(), 5u);
     ASSERT_EQ(s.walkthrough.size(), s.cameras.size());
     for (const std::string& name : s.walkthrough) EXPECT_NO_THROW(s.camera(name));

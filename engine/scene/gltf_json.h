@@ -8,7 +8,7 @@
 //   - an optional core number of the wrong type keeps its default ("intensity": "bright" gave 1).
 // Two ways were possible: pre-scan the JSON and refuse every integer tinygltf would wrap, or read the values
 // ourselves. Both are used, each where it is exact: the extensions the loader understands (GLIMMER_materials_glint,
-// KHR_materials_clearcoat, KHR_materials_emissive_strength, KHR_texture_transform, KHR_lights_punctual) and the
+// KHR_materials_clearcoat, KHR_materials_emissive_strength, KHR_texture_transform, KHR_lights_punctual, GLIMMER_lights_area) and the
 // glint extras are read from this JSON, so a wide integer is read as the number it is (a density of 2^32 facets
 // per square metre is legal) and a null or a wrong type is an error naming the key; the core properties tinygltf
 // reads as int (indices, enums, texCoord) are pre-scanned and an integer outside 32 bits is an error naming the

@@ -1,5 +1,7 @@
 #include "scene/scene_hash.h"
 
+#include <cstddef>
+
 #include "core/cache_file.h"
 
 namespace glimmer {
@@ -10,7 +12,9 @@ void addVec(cache::ContentHasher& h, const float* values, int count) { h.add(val
 
 std::string sceneContentHash(const Scene& scene) {
     // A new field of Material or Light must be hashed below: this catches one that was added without it.
-    static_assert(sizeof(Light) == 13 * sizeof(float) + sizeof(LightType), "hash the new Light field below");
+    static_assert(offsetof(Light, twoSided) == 20 * sizeof(float) + sizeof(LightType) &&
+                      sizeof(Light) == offsetof(Light, twoSided) + alignof(float),
+                  "hash the new Light field below");
     cache::ContentHasher h;
     h.add(uint64_t(scene.meshes.size()));
     for (const MeshData& m : scene.meshes) {
@@ -50,6 +54,8 @@ std::string sceneContentHash(const Scene& scene) {
         addVec(h, &l.color[0], 3);
         addVec(h, &l.spotDirection[0], 3);
         h.add(l.intensity).add(l.innerConeAngle).add(l.outerConeAngle).add(l.range);
+        h.add(l.angularDiameter).add(l.radius).add(l.width).add(l.height).add(uint64_t(l.twoSided));
+        addVec(h, &l.right[0], 3);
     }
     addVec(h, &scene.skyColor[0], 3);
     h.add(scene.environment);
