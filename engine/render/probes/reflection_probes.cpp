@@ -381,7 +381,7 @@ void ReflectionProbes::storeToDisk(const std::string& key) const {
     const std::string name = "probes_" + cache::contentHash(key) + ".bin";
     if (dir.store(name, {"reflection-probes", kProbeCacheLayout, key},
                   {reinterpret_cast<const char*>(payload.data()), payload.size() * sizeof(float)}))
-        dir.pruneLeastRecentlyUsed("probes_", ".bin", kMaxCacheFiles);
+        dir.pruneLeastRecentlyUsed("probes_", ".bin", cache::keptFilesPerKind(kMaxCacheFiles));
 }
 
 FrameImage ReflectionProbes::image(bool active) const {
