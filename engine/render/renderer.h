@@ -47,6 +47,10 @@ public:
     // renderer's views (probe captures) shares that renderer's environment instead of preparing its own.
     Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings, FrameKind kind = FrameKind::Full,
              Environment* sharedEnvironment = nullptr);
+    // A second full view of `source`'s scene (the window's split screen): it reads source's environment and
+    // reflection probes, which source prepares (source renders first in each frame), instead of building and
+    // capturing its own; it keeps them alive while it lives.
+    Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings, Renderer& source);
     ~Renderer();
 
     // Switches method or parameters. Rebuilds the lighting program when the method changes.
@@ -131,6 +135,7 @@ public:
     void resetHistory();
 
 private:
+    void initialise();   // what every constructor does once the environment is chosen
     // The frame list, in order (every pass of FrameKind, then the method's passes after lighting). Builds all
     // first, then swaps: a failure leaves the previous list in place.
     void buildFrameList();
@@ -146,8 +151,13 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     FrameKind kind_;
-    std::unique_ptr<Environment> ownEnvironment_;
+    std::shared_ptr<Environment> ownEnvironment_;        // null when the environment is another renderer's
+    std::shared_ptr<Environment> borrowedEnvironment_;   // source's, for a second view (keeps it alive)
     Environment* environment_;
+    // The reflection probes: this renderer's (invalidated by every buildFrameList: rebuilt shaders capture again),
+    // or source's for a second view, which never updates them (probesBorrowed_).
+    std::shared_ptr<ReflectionProbes> probes_;
+    bool probesBorrowed_ = false;
     // Feature state shared by the passes of one feature folder.
     std::shared_ptr<ShadowMaps> shadowMaps_;
     std::shared_ptr<AmbientOcclusion> ambientOcclusion_;
