@@ -308,7 +308,10 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
         .recordOnDemand = [&](const std::string& name, double ms) { recordOnDemand(name, ms, measurePasses); },
     };
     // Passes may render other views here (probes, per-object maps), so the frame's own state is set after.
-    for (const auto& pass : frame_) pass->prepare(prepare);
+    for (const auto& pass : frame_) {
+        if (prepareListener_) prepareListener_(pass->name());
+        pass->prepare(prepare);
+    }
 
     // TAA jitters the projection: a screen-space translation (its prepare() chose the jitter).
     glm::mat4 projection = view.camera.projection(view.aspect());

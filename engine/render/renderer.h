@@ -5,6 +5,7 @@
 // (GpuScene).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -74,6 +75,11 @@ public:
     // available: no glFinish, no stall. passTimings() then holds gpuMs (wallMs 0) of a frame a few frames old.
     // Meaningless on software renderers (llvmpipe times the submit, not the work).
     void setAsyncGpuTimers(bool enabled) { asyncGpuTimers_ = enabled; }
+    // Called with each pass's name before its prepare(), where the on-demand work runs (probe captures, the sky
+    // bake, method tables): the window's loading frame names the step in progress. Empty (the default): none.
+    void setPrepareListener(std::function<void(const std::string& passName)> listener) {
+        prepareListener_ = std::move(listener);
+    }
 
     // Renders one view: the environment for the scene, every pass's prepare() in list order (shadow fitting, probe
     // captures, the sky bake, the method's data, TAA's jitter...), the frame's uniforms, then every pass that runs.
@@ -180,6 +186,7 @@ private:
     bool editPassesOfThisFrame_ = false;   // editPasses_ already holds on-demand passes of the current frame
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
+    std::function<void(const std::string&)> prepareListener_;
     uint32_t frameIndex_ = 0;
 };
 
