@@ -85,7 +85,7 @@ void LoadingScreen::draw(ui::UiRenderer& uiRenderer) {
     int width = 0, height = 0;
     window_.framebufferSize(width, height);
     if (width <= 0 || height <= 0) return;
-    const int scale = std::clamp(height / 240, 1, 4);
+    const int scale = std::clamp(height / 300, 1, 4);   // 2 at 720 lines: the longest step line fits 1280 x 720
     const float line = float((ui::kCellHeight + 4) * scale);
     ui::DrawList list;
     const float left = float(width) * 0.12f, top = float(height) * 0.2f, barWidth = float(width) * 0.76f;
