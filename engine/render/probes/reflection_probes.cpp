@@ -83,6 +83,13 @@ ReflectionProbes::ReflectionProbes(std::filesystem::path shaderRoot) : shaderRoo
 
 ReflectionProbes::~ReflectionProbes() = default;
 
+void ReflectionProbes::invalidate() {
+    captured_ = false;
+    shaderHash_.clear();
+    renderer_.reset();
+    prefilter_.reset();
+}
+
 ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuScene& gpuScene,
                                                   Environment& environment, const RenderSettings& settings) {
     ProbeSettings ps = probeSettings(settings);
