@@ -267,13 +267,12 @@ static GlintMethod chermainMethod(bool version2021) {
           "material (ours): cells below one microfacet are empty with the matching probability, and a glint_angle "
           "below the dictionary's lobe thins the lobes so that the number reflecting stays the material's",
           {"clamped", "material"}},
-         {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 1.0f,
-          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA); none: 2020",
-          {"none", "ggaa"}},
+         {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
+          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA), its footprint from the "
+          "derivatives of the projected half vector (the authors' default); ggaa_slope: from those of its slope "
+          "(the authors' other choice); none: 2020",
+          {"none", "ggaa", "ggaa_slope"}},
          {"kernel_size", 0.5f, 0.0f, 2.0f, "scale of the GGAA filter over the pixel's slope footprint (authors: 0.5)"},
-         {"aa_derivatives", 0.0f, 0.0f, 1.0f,
-          "GGAA footprint from the derivatives of the projected half vector (authors' default) or of its slope",
-          {"hemispherical", "slope"}},
          {"normal_filtering", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
           "lean: the normal map's filtered slope covariance widens the NDF (2021 normal map filtering, LEAN mapping); "
           "lean_without_rho: its variances only; none",

@@ -434,7 +434,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
         vec3 dhx, dhy;
         chermainHalfVectorDerivatives(s, h, wi, wo, dhx, dhy);
         vec2 mdx, mdy;
-        if (P_AA_DERIVATIVES < 0.5) {
+        if (P_ANTI_ALIASING < 1.5) {   // ggaa: hemispherical derivatives; ggaa_slope: of the slope
             // Hemispherical derivatives (authors' default): of the projected half vector h.xy, used as slopes'.
             mdx = dhx.xy;
             mdy = dhy.xy;
