@@ -203,7 +203,9 @@ TEST(GlintLifespan, Kemppinen2025HalvesWhereTheGlintLobePredicts) {
 // (T, shaders/glints/chermain2020/chermain2020.glsl) and scaled by sigma_dict (the cells' rotation keeps distances).
 // Like kemppinen2025's lobes, the correlation falls to 0.5 at a shift of 1.665 sigma_lobe / sigma_dict in T(W m).
 // The prediction solves that at the image centre; measured 1.20 of it (the table is read linearly between texels
-// 1.1 sigma_lobe apart, which widens a lobe); asserted within a factor 1.5 both ways.
+// 1.1 sigma_lobe apart, which widens a lobe); asserted within a factor 1.5 both ways. With the authors' density
+// randomization and lobe clamp (the dictionary's lobe is what is predicted); with the material mapping's zeta 0
+// and lobe_count=material it measured 1.54x (docs/chermain2020.md; not investigated further).
 TEST(GlintLifespan, Chermain2020HalvesWhereTheDictionaryLobePredicts) {
     const Material plane = makeBuiltinScene("plane90").materials.front();
     ASSERT_EQ(plane.ndf, NdfType::Ggx);
@@ -218,7 +220,8 @@ TEST(GlintLifespan, Chermain2020HalvesWhereTheDictionaryLobePredicts) {
     double predicted = angleWhere([&](double a) { return glm::length(warped(a) - u0); }, 1.665 * lobe);
     std::vector<double> angles;
     for (int i = 1; i <= 8; ++i) angles.push_back(predicted * 0.35 * i);
-    double measured = measuredHalfAngle("chermain2020", {}, angles);
+    double measured = measuredHalfAngle(
+        "chermain2020", {"chermain2020.density_randomization=2", "chermain2020.lobe_count=clamped"}, angles);
     std::printf("chermain2020: correlation halves at %.5f rad (%.3f deg), predicted %.5f rad\n", measured,
                 measured * 180 / M_PI, predicted);
     EXPECT_GT(measured / predicted, 1 / 1.5);

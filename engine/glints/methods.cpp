@@ -262,13 +262,17 @@ static GlintMethod chermainMethod(bool version2021) {
           {}, false, true},
          {"glint_angle", 0.0f, 0.0f, 0.5f,
           "gamma (radians) of one glint; 0 or below the dictionary's lobe: the dictionary's own width (ours)"},
-         {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 1.0f,
-          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA); none: 2020",
-          {"none", "ggaa"}},
+         {"lobe_count", 0.0f, 0.0f, 1.0f,
+          "clamped: the authors' (a cell holds at least level 0's 4 lobes; glints no narrower than the dictionary's); "
+          "material (ours): cells below one microfacet are empty with the matching probability, and a glint_angle "
+          "below the dictionary's lobe thins the lobes so that the number reflecting stays the material's",
+          {"clamped", "material"}},
+         {"anti_aliasing", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
+          "ggaa: the pixel's range of half vectors filters the marginals (2021 GGAA), its footprint from the "
+          "derivatives of the projected half vector (the authors' default); ggaa_slope: from those of its slope "
+          "(the authors' other choice); none: 2020",
+          {"none", "ggaa", "ggaa_slope"}},
          {"kernel_size", 0.5f, 0.0f, 2.0f, "scale of the GGAA filter over the pixel's slope footprint (authors: 0.5)"},
-         {"aa_derivatives", 0.0f, 0.0f, 1.0f,
-          "GGAA footprint from the derivatives of the projected half vector (authors' default) or of its slope",
-          {"hemispherical", "slope"}},
          {"normal_filtering", version2021 ? 1.0f : 0.0f, 0.0f, 2.0f,
           "lean: the normal map's filtered slope covariance widens the NDF (2021 normal map filtering, LEAN mapping); "
           "lean_without_rho: its variances only; none",
@@ -281,7 +285,15 @@ static GlintMethod chermainMethod(bool version2021) {
         {"log_density", GlintQuantity::Density, 0.25f, 1.0f, 0.0f, true,
          "Alg. 3: a cell of n microfacets uses dictionary level log4 n, whose product of marginals has "
          "4^(l+1) = 4 n lobes (each 1D marginal's 2^l lobes and their mirror twins): n is a quarter of the facets "
-         "per unit UV area. The density randomization spreads log4 n by zeta around this median"},
+         "per unit UV area"},
+        {"density_randomization", GlintQuantity::Density, 0.0f, 0.0f, 0.0f, false,
+         "0: the authors' zeta = 2 spreads each cell's facet count log-normally (16x either way at one sigma), a "
+         "device of theirs, not a quantity of the material; with it the dense views' CV is 1.7-3.6x the "
+         "discrete-facet reference's (docs/chermain2020.md); --set chermain2020.density_randomization=2 restores it"},
+        {"lobe_count", GlintQuantity::Density, 1.0f, 0.0f, 0.0f, false,
+         "material: cells below one microfacet are empty with the matching probability (dark pixels of sparse "
+         "materials) and glints narrower than the dictionary's lobe thin the lobes instead (deviation 16); "
+         "--set chermain2020.lobe_count=clamped restores the authors'"},
         {"glint_angle", GlintQuantity::AngularSize, 1.0f, 1.0f, 0.0f, false,
          "gamma: a facet reflects h within a cone of half-angle gamma (solid angle pi gamma^2); a Gaussian lobe of "
          "deviation s in slope space has the same area when s = gamma / sqrt 2 (ours: the paper ties the lobe "

@@ -162,8 +162,13 @@ CellDraw drawCell(const ReferenceParams& p, int level, glm::ivec2 cell, float lo
     float uArea = (float(r[0] & 0xffffu) + 0.5f) * (1.0f / 65536.0f);
     draw.empty = uArea > p.relativeArea;
     float uDensity = (float(r[1] >> 8u) + 0.5f) * (1.0f / 16777216.0f);
-    draw.dictionaryLevel =
-        int(std::clamp(std::round(log4n + p.densityRandomization * probit(uDensity)), 0.0f, float(levels)));
+    float lf = log4n + p.densityRandomization * probit(uDensity);
+    if (p.lobeCount > 0.5f && lf < 0.0f) {   // lobe_count = material: kept with probability 4^lf, weighted 1 / 4^lf
+        float keep = std::exp2(2.0f * lf);
+        draw.empty = draw.empty || (float(r[3] >> 8u) + 0.5f) * (1.0f / 16777216.0f) > keep;
+        draw.scale = 1.0f / keep;
+    }
+    draw.dictionaryLevel = int(std::clamp(std::round(lf), 0.0f, float(levels)));
     draw.theta = 2.0f * kPi * (float(r[0] >> 16u) + 0.5f) * (1.0f / 65536.0f);
     draw.marginalX = int(((r[2] & 0xffffu) * 192u) >> 16u);
     draw.marginalY = int(((r[2] >> 16u) * 192u) >> 16u);
@@ -198,6 +203,15 @@ double referenceD(const Dictionary& d, const ReferenceParams& p, glm::vec2 uv, g
     glm::vec3 shape(sx, sy, rho);
     double smooth = targetP22(m, shape, ndf);
     if (f.noFootprint) return smooth / cos4;
+    if (p.lobeCount > 0.5f && p.glintAngle > 0.0f) {   // lobe_count = material: (s / sigma_lobe)^2 of the lobes
+        const float sd = float(d.spec.sigmaDict()), lobe = float(d.spec.lobeStd);
+        float sd2 = 0.5f * p.glintAngle * p.glintAngle * sd * sd / (sx * sy * std::sqrt(1.0f - rho * rho));
+        float thin = std::min(0.0f, std::log(sd2 / (lobe * lobe)) / 1.38629436f);
+        for (Level& lv : f.levels) {
+            lv.log4n += thin;
+            lv.allSmooth = lv.log4n - p.densityRandomization * 5.4f >= float(levels) - 0.5f && p.relativeArea >= 1.0f;
+        }
+    }
     float c = std::sqrt(1.0f - rho * rho);
     glm::mat2 W(1.0f / (sx * c), 0.0f, -rho / (sy * c), 1.0f / sy);
     glm::vec2 u = W * m;
@@ -225,7 +239,7 @@ double referenceD(const Dictionary& d, const ReferenceParams& p, glm::vec2 uv, g
             glm::vec2 o = float(sigmaDict) * (glm::mat2(ct, -sn, sn, ct) * u);
             glm::vec2 a = glm::abs(o);
             if (a.x >= range || a.y >= range) return;
-            sum += w * marginalAt(d, draw.dictionaryLevel, draw.marginalX, float(a.x / range)) *
+            sum += w * draw.scale * marginalAt(d, draw.dictionaryLevel, draw.marginalX, float(a.x / range)) *
                    marginalAt(d, draw.dictionaryLevel, draw.marginalY, float(a.y / range)) * jacobian;
         });
         return weights > 0.0 ? sum / weights : 0.0;

@@ -17,6 +17,8 @@ namespace glimmer::chermain2020 {
 struct ReferenceParams {
     float logDensity = 27.0f, relativeArea = 1.0f, densityRandomization = 2.0f, maxAnisotropy = 8.0f;
     float lodBias = 0.0f, roughnessAnisotropy = 1.0f, slopeCorrelation = 0.0f, glintAnisotropy = 1.0f, seed = 0.0f;
+    float lobeCount = 0.0f;   // 0 clamped (authors), 1 material (ours: sparse cells emptied, lobes thinned)
+    float glintAngle = 0.0f;  // gamma: with lobeCount 1, the lobe thinning only (the widening is not modelled)
 };
 
 // The shader's 4D integer hash and the inverse normal CDF it draws the density randomization with.
@@ -29,6 +31,7 @@ struct CellDraw {
     int dictionaryLevel = 0; // l_dist, CHERMAIN_LEVELS = the smooth NDF
     int marginalX = 0, marginalY = 0;
     float theta = 0.0f;      // rotation, radians
+    float scale = 1.0f;      // 1 / the probability of holding microfacets (lobe_count = material)
 };
 CellDraw drawCell(const ReferenceParams& params, int level, glm::ivec2 cell, float log4n, int levels);
 

@@ -53,11 +53,12 @@ struct ChermainCell {
     int lDist;         // dictionary level, CHERMAIN_LEVELS = the smooth NDF
     int i, j;          // the two marginals
     float ct, sn;      // cos and sin of the random rotation
+    float scale;       // 1 / the probability that the cell holds microfacets (lobe_count = material): E[D] kept
 };
 
 struct GlintPixel {
     ChermainLevel levels[2];
-    vec4 cells[CHERMAIN_CACHED_CELLS];   // EWA weight, cos, sin, lDist + 256 i + 65536 j (exact in float)
+    vec4 cells[CHERMAIN_CACHED_CELLS];   // EWA weight x scale, cos, sin, lDist + 256 i + 65536 j (exact in float)
     float blend;        // weight of levels[1] (Alg. 1 line 7)
     bool noFootprint;   // zero footprint: the smooth NDF (authors' code)
     bool noFacets;      // density scale <= 0: no microfacets, no specular reflection
@@ -184,6 +185,16 @@ GlintPixel glintSetup(GlintSurface s) {
     float lnN0 = P_LOG_DENSITY + log(max(s.densityScale, 1e-30)) - log(stretch.y) -
                  2.0 * float(CHERMAIN_LEVELS - 1) * 0.69314718;
     float log4n0 = lnN0 / 1.38629436;
+    // lobe_count = material (ours, docs/chermain2020.md deviation 16): a glint narrower than the dictionary's lobe
+    // (glint_angle below sigma_lobe in dictionary slopes, see chermainCellP22) cannot be drawn; instead the cells
+    // hold (s / sigma_lobe)^2 fewer lobes, so that the expected number of lobes that reflect a given h (count x
+    // area) and the share each carries stay the material's. s at h = n: gamma / sqrt 2 times the whitening's
+    // scale sigma_dict / sqrt(sigma_x sigma_y sqrt(1 - rho^2)) (the GGX warp is the identity there).
+    if (P_LOBE_COUNT > 0.5 && P_GLINT_ANGLE > 0.0) {
+        float sd2 = 0.5 * P_GLINT_ANGLE * P_GLINT_ANGLE * CHERMAIN_SIGMA_DICT * CHERMAIN_SIGMA_DICT /
+                    (px.shape.x * px.shape.y * sqrt(1.0 - px.shape.z * px.shape.z));
+        log4n0 += min(0.0, log(sd2 / (CHERMAIN_LOBE_STD * CHERMAIN_LOBE_STD)) / 1.38629436);
+    }
     px.levels[0] = chermainSetupLevel(il, st, d0, d1, log4n0);
     px.levels[1] = chermainSetupLevel(il + 1, st, d0, d1, log4n0);
     // With one light the cells are drawn where glintD evaluates them (caching them costs 7-10 % more there); with
@@ -217,8 +228,19 @@ ChermainCell chermainDrawCell(ChermainLevel lv, ivec2 cell) {
     c.empty = uArea > P_MICROFACET_RELATIVE_AREA;
     // Alg. 3 lines 7-9: the dictionary level, randomized around log4 n (zeta = density_randomization), rounded.
     float uDensity = (float(r.y >> 8u) + 0.5) * (1.0 / 16777216.0);
-    c.lDist = int(clamp(round(lv.log4n + P_DENSITY_RANDOMIZATION * chermainProbit(uDensity)), 0.0,
-                        float(CHERMAIN_LEVELS)));
+    float lf = lv.log4n + P_DENSITY_RANDOMIZATION * chermainProbit(uDensity);
+    // The authors clamp l_dist at 0: a cell with fewer than one microfacet still holds 4 lobes. lobe_count =
+    // material (ours, deviation 16): such a cell holds level 0's 4 lobes with probability 4^lf and none
+    // otherwise, which keeps the expected lobe count 4^(lf + 1) and lets sparse materials have dark pixels.
+    // Each kept cell weighs 1 / 4^lf: it stands for the area of the empty ones, as a facet of a sparse material
+    // stands for the surface around it (the mean of D stays the smooth NDF's).
+    c.scale = 1.0;
+    if (P_LOBE_COUNT > 0.5 && lf < 0.0) {
+        float keep = exp2(2.0 * lf);
+        c.empty = c.empty || (float(r.w >> 8u) + 0.5) * (1.0 / 16777216.0) > keep;
+        c.scale = 1.0 / keep;
+    }
+    c.lDist = int(clamp(round(lf), 0.0, float(CHERMAIN_LEVELS)));
     // Alg. 3 lines 13-15: the cell's random rotation (against glint alignment).
     float theta = 2.0 * PI * (float(r.x >> 16u) + 0.5) * (1.0 / 65536.0);
     c.ct = cos(theta);
@@ -302,7 +324,7 @@ float chermainLevelP22(GlintPixel px, ChermainLevel lv, ChermainSlope sl) {
         for (int k = 0; k < lv.cached; ++k) {
             vec4 e = px.cells[lv.firstCached + k];
             int code = int(e.w);
-            ChermainCell c = ChermainCell(false, code & 255, (code >> 8) & 255, code >> 16, e.y, e.z);
+            ChermainCell c = ChermainCell(false, code & 255, (code >> 8) & 255, code >> 16, e.y, e.z, 1.0);   // scale in e.x
             sum += e.x * chermainCellP22(sl, c);
         }
         g_chermainCells += lv.cached;
@@ -311,7 +333,7 @@ float chermainLevelP22(GlintPixel px, ChermainLevel lv, ChermainSlope sl) {
     float sumWeights = 0.0;
     CHERMAIN_FOR_EACH_CELL(lv, {
         ChermainCell c = chermainDrawCell(lv, cell);
-        if (!c.empty) sum += weight * chermainCellP22(sl, c);
+        if (!c.empty) sum += weight * c.scale * chermainCellP22(sl, c);
         sumWeights += weight;
         g_chermainCells += 1;
     })
@@ -335,7 +357,7 @@ void chermainDrawLevels(inout GlintPixel px) {
                     ChermainCell c = chermainDrawCell(lv, cell);
                     if (c.empty) {
                     } else if (used < CHERMAIN_CACHED_CELLS) {
-                        px.cells[used] = vec4(weight, c.ct, c.sn, float(c.lDist + 256 * c.i + 65536 * c.j));
+                        px.cells[used] = vec4(weight * c.scale, c.ct, c.sn, float(c.lDist + 256 * c.i + 65536 * c.j));
                         ++used;
                         ++lv.cached;
                     } else {
@@ -412,7 +434,7 @@ float glintD(GlintPixel px, GlintSurface s, vec3 h, vec3 wi, vec3 wo) {
         vec3 dhx, dhy;
         chermainHalfVectorDerivatives(s, h, wi, wo, dhx, dhy);
         vec2 mdx, mdy;
-        if (P_AA_DERIVATIVES < 0.5) {
+        if (P_ANTI_ALIASING < 1.5) {   // ggaa: hemispherical derivatives; ggaa_slope: of the slope
             // Hemispherical derivatives (authors' default): of the projected half vector h.xy, used as slopes'.
             mdx = dhx.xy;
             mdy = dhy.xy;
