@@ -123,6 +123,12 @@ TEST(RenderPath, TheSceneComesFromThePathFileAndFramesSurviveAMissingFfmpeg) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::is_directory(dir / "fromfile")) << "--out's folder was not created";
     EXPECT_EQ(slurp(dir / "named" / "001.png"), slurp(dir / "fromfile" / "001.png"));
+    std::vector<std::string> plane90 = named;   // render's default scene: another image (the test can fail)
+    plane90[2] = "plane90";
+    for (std::string& a : plane90)
+        if (a.find("named") != std::string::npos) a.replace(a.find("named"), 5, "plane90");
+    ASSERT_EQ(test::runGlimmer(plane90).exitCode, 0);
+    EXPECT_NE(slurp(dir / "plane90" / "001.png"), slurp(dir / "fromfile" / "001.png"));
     EXPECT_NE(r.err.find("3 frames at 2 fps cover 1.00 s of the path's 1.00 s"), std::string::npos) << r.err;
 
     std::string text = slurp(path);

@@ -1,4 +1,5 @@
 // glimmer render: one offscreen frame to PNG (tone-mapped sRGB) or EXR (linear float).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -67,7 +68,11 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     // the atrium's path over plane90 showed an empty plane).
     std::optional<std::string> pathFile = args.value("--path");
     std::string defaultScene = "plane90";
-    if (pathFile && !args.value("--scene")) defaultScene = sceneOfPathFile(*pathFile);
+    // (Looked up in the raw list: ArgReader hands each value out once, and readCommonRenderOptions reads --scene.)
+    bool sceneGiven = std::any_of(argList.begin(), argList.end(), [](const std::string& a) {
+        return a == "--scene" || a.rfind("--scene=", 0) == 0;
+    });
+    if (pathFile && !sceneGiven) defaultScene = sceneOfPathFile(*pathFile);
     RenderRequest request = readCommonRenderOptions(args, defaultScene, "deliot2023");
     request.width = request.height = 512;
     if (auto size = args.value("--size")) parseSize(*size, "--size", request.width, request.height);

@@ -87,6 +87,13 @@ const char* methodParameterValueText(const GlintMethod& method, const RenderSett
     return nullptr;
 }
 
+std::string panelMethodTitle(const std::string& title, int uiScale) {
+    const float room = float((kPanelWidthChars * kCellWidth - 8) * uiScale);
+    if (float(textWidth(title, uiScale)) <= room) return title;
+    size_t bracket = title.find(" (");
+    return bracket == std::string::npos ? title : title.substr(0, bracket);
+}
+
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
     std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
@@ -119,11 +126,12 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
         if (!methods.empty()) {
             const GlintMethod& method = methods[size_t(methodIndex)];
-            ui.paragraph(method.title);
+            // The description on one row where it fits, else its citation (the part before " (..."), wrapped only
+            // if even that is too long: the method section must keep the panel's sections on a 1280x720 window
+            // (PanelFit), and the whole description is the notice shown when the method is selected.
+            ui.paragraph(panelMethodTitle(method.title, ui.scale()));
             // A user method: where it comes from (edits to the file reload it, header included).
             if (method.isUserMethod()) ui.paragraph("file " + displayPath(method.sourceFile));
-            if (!method.materialMapping.empty() && window.mappedMaterial)
-                ui.paragraph("mapped values (mat): material " + window.mappedMaterial->name);
             if (method.params.empty()) ui.label("(no parameters)");
             for (const ParamSpec& spec : method.params) {
                 if (panelHidesMethodParameter(method, spec.name)) continue;

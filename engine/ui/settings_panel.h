@@ -68,6 +68,10 @@ PanelLayout panelLayout(int width, int height, int statsLines);
 const char* methodParameterValueText(const GlintMethod& method, const RenderSettings& settings,
                                      const std::string& name);
 
+// What the panel shows of a method's description: all of it where it fits the panel's width, else the citation
+// before " (" (the window's notice shows the whole description when the method is selected).
+std::string panelMethodTitle(const std::string& title, int uiScale);
+
 // The speed slider's range (also used by the wheel).
 ParamSpec moveSpeedSpec();
 

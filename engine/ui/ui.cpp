@@ -335,6 +335,14 @@ Edit Context::slider(std::string_view text, const ParamSpec& spec, float& value,
             valueArea.w = std::round(std::max(needed, std::min(valueArea.w, row.w - float(textWidth(text, scale_)) -
                                                                                   float(6 * scale_))));
         }
+        // A choice longer than the value area (a user method's name) takes room from a short label.
+        int shownIndex = std::clamp(int(std::lround(value)), 0, std::max(choiceCount - 1, 0));
+        float shownWidth = choiceCount > 0 ? float(textWidth(spec.choices[size_t(shownIndex)], scale_)) : 0.0f;
+        float cellWidth = float(kCellWidth * scale_);
+        if (shownWidth + 2.0f * cellWidth + float(2 * scale_) > valueArea.w)
+            valueArea.w = std::round(std::max(valueArea.w, std::min(shownWidth + 2.0f * cellWidth + float(2 * scale_),
+                                                                     row.w - float(textWidth(text, scale_)) -
+                                                                         float(6 * scale_))));
         valueArea.x = row.x + row.w - valueArea.w;
     }
 

@@ -172,7 +172,7 @@ private:
         if (next.ibl == defaultIblOf(methods[size_t(current)])) next.ibl = defaultIblOf(chosen);
         next.method = chosen.id;
         applySettings(next);
-        showMessage("method " + renderer_->settings().method);
+        announceMethod();
     }
 
     // I / Shift+I: the next IBL mode that runs with the current method (modes made for one method, such as
@@ -245,6 +245,16 @@ private:
         edited_ = true;
     }
     void showMessage(const std::string& text) override { overlay_.notify(text, now_); }
+
+    // The whole description of the method in use (the panel may show only its citation) and, when the method maps
+    // material values, whose values the "mat" sliders show.
+    void announceMethod() {
+        const GlintMethod& method = findGlintMethod(renderer_->settings().method);
+        std::string text = "method " + method.id + ": " + method.title;
+        if (!method.materialMapping.empty() && controls_.mappedMaterial)
+            text += "; \"mat\" values: material " + controls_.mappedMaterial->name;
+        showMessage(text);
+    }
 
     // ---- scenes ----
     // The method sliders of mapped parameters start from the first glinty material's values (ui/settings_panel.h).
@@ -346,7 +356,11 @@ private:
             RenderSettings edited = renderer_->settings();
             ui::PanelResult result =
                 ui::settingsPanel(ui_, edited, controls_, margin, margin, float(height) - statsHeight - 2.0f * margin);
-            if (result.settingsChanged) applySettings(edited);
+            if (result.settingsChanged) {
+                std::string before = renderer_->settings().method;
+                applySettings(edited);
+                if (renderer_->settings().method != before) announceMethod();
+            }
             if (result.vsyncChanged) window_.setVsync(controls_.vsync);
             if (result.cameraRequested >= 0) camera_.jumpToCamera(result.cameraRequested);
             if (result.toggleWalkthrough) camera_.togglePathPlaying();
