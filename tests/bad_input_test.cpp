@@ -79,7 +79,8 @@ TEST(BadInput, EachGivesAOneLineErrorAndANonZeroExit) {
         {"--render-scale out of range", {"render", "--render-scale", "2", "--out", out}, "--render-scale"},
         {"--render-scale with --aov", {"render", "--render-scale", "0.5", "--aov", "depth", "--out", out}, "--aov"},
         {"bad --size (too large)", {"render", "--size", "100000x100000", "--out", out}, "--size"},
-        {"unwritable --out directory", {"render", "--out", dir + "/missing-dir/out.png"}, "--out"},
+        // A missing --out folder is created (issue 39, 13); one that cannot be (a file in the way) is an error.
+        {"uncreatable --out directory", {"render", "--out", tempFile(dir, "a-file", "x") + "/sub/out.png"}, "--out"},
         {"unwritable --out file", {"render", "--out", "/proc/glimmer.png"}, "--out"},
         {"unsupported --out type", {"render", "--out", dir + "/out.jpg"}, "--out"},
         {"unknown camera", {"render", "--scene", "sphere", "--camera", "drone", "--out", out}, "drone"},

@@ -436,7 +436,8 @@ TEST(BenchSplitView, WindowShowsBothMethodsAroundTheDivider) {
     const std::string view = (dir / "split_view.png").string(), left = (dir / "split_smooth.png").string(),
                       right = (dir / "split_zirr2016.png").string();
     std::string command = std::string(GLIMMER_EXECUTABLE) +
-                          " view --scene plane25 --method smooth --size 128x96 --frames 2 --hide-ui --split zirr2016 --split-at 0.5"
+                          " view --scene plane25 --method smooth --size 128x96 --frames 2 --like-render --hide-ui"
+                          " --split zirr2016 --split-at 0.5"
                           " --screenshot " + view + " >/dev/null 2>&1";
     ASSERT_EQ(test::runUnderXvfb(command), 0) << command;
     for (const auto& [method, out] : {std::pair{"smooth", left}, std::pair{"zirr2016", right}}) {

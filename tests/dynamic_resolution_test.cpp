@@ -148,7 +148,8 @@ TEST(UpscaleWindow, AtHalfScaleShowsTheHalfSizeRenderUpscaledWithItsDerivatives)
     fs::path view = dir + "/view.png", viewDuv = dir + "/view_duv.exr";
     fs::path small = dir + "/render128.png", smallDuv = dir + "/render128_duv.exr", fullDuv = dir + "/render256_duv.exr";
     std::string viewBase = std::string(GLIMMER_EXECUTABLE " view") + scene +
-                           " --size 256x256 --render-scale 0.5 --target-fps 0 --hide-ui --frames 3 --screenshot ";
+                           " --size 256x256 --render-scale 0.5 --target-fps 0 --like-render --hide-ui --frames 3"
+                           " --screenshot ";
     ASSERT_EQ(test::runUnderXvfb(viewBase + view.string() + " > /dev/null 2>&1"), 0);
     ASSERT_EQ(test::runUnderXvfb(viewBase + viewDuv.string() + " --aov duvdx > /dev/null 2>&1"), 0);
     ASSERT_EQ(test::runGlimmer({"render", "--scene", "plane25", "--env", "none", "--size", "128x128", "--frames", "3",

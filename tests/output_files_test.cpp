@@ -105,6 +105,23 @@ TEST(AtomicFile, FifosDevicesAndMissingFoldersAreRefusedUpFront) {
     EXPECT_NO_THROW(glimmer::checkOutputPath(dir / "new.png", "--out"));
 }
 
+// render --out creates a missing folder (issue 39, 13); a file in the way is a one-line error naming the flag.
+TEST(AtomicFile, OutputFolderIsCreatedUnlessAFileIsInTheWay) {
+    fs::path dir = freshDir("out-folder");
+    glimmer::createOutputFolder(dir / "a" / "b" / "x.png", "--out");
+    EXPECT_TRUE(fs::is_directory(dir / "a" / "b"));
+    EXPECT_NO_THROW(glimmer::checkOutputPath(dir / "a" / "b" / "x.png", "--out"));
+    std::ofstream(dir / "file") << "x";
+    try {
+        glimmer::createOutputFolder(dir / "file" / "sub" / "x.png", "--out");
+        ADD_FAILURE() << "no error";
+    } catch (const glimmer::Error& e) {
+        std::string message = e.what();
+        EXPECT_EQ(message.rfind("--out: ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
 glimmer::cache::CacheKey testKey(const std::string& parameters = "n=4") { return {"test-cache", 3, parameters}; }
 
 TEST(CacheFile, RoundTripAndEveryMismatchIsRejected) {

@@ -107,6 +107,49 @@ TEST(RenderPath, VideoNeedsFfmpegAndSaysSoWhenItIsMissing) {
     EXPECT_GT(fs::file_size(dir / "v.mp4"), 500u);
 }
 
+// Issue 39, 7: without --scene a path renders in the scene its file names (the atrium's path rendered plane90);
+// a file that names none is a one-line error asking for --scene. With --out, a missing ffmpeg still leaves the
+// frames (and fails at the end, saying where they are).
+TEST(RenderPath, TheSceneComesFromThePathFileAndFramesSurviveAMissingFfmpeg) {
+    fs::path dir = test::makeTempDir("render-path-scene");
+    fs::path path = writePath(dir);   // names plane25
+    std::vector<std::string> named = pathArgs(path, dir / "named");
+    std::vector<std::string> fromFile = named;
+    fromFile.erase(fromFile.begin() + 1, fromFile.begin() + 3);   // no --scene plane25
+    for (std::string& a : fromFile)
+        if (a.find("named") != std::string::npos) a.replace(a.find("named"), 5, "fromfile");
+    ASSERT_EQ(test::runGlimmer(named).exitCode, 0);
+    test::ProcessResult r = test::runGlimmer(fromFile);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::is_directory(dir / "fromfile")) << "--out's folder was not created";
+    EXPECT_EQ(slurp(dir / "named" / "001.png"), slurp(dir / "fromfile" / "001.png"));
+    std::vector<std::string> plane90 = named;   // render's default scene: another image (the test can fail)
+    plane90[2] = "plane90";
+    for (std::string& a : plane90)
+        if (a.find("named") != std::string::npos) a.replace(a.find("named"), 5, "plane90");
+    ASSERT_EQ(test::runGlimmer(plane90).exitCode, 0);
+    EXPECT_NE(slurp(dir / "plane90" / "001.png"), slurp(dir / "fromfile" / "001.png"));
+    EXPECT_NE(r.err.find("3 frames at 2 fps cover 1.00 s of the path's 1.00 s"), std::string::npos) << r.err;
+
+    std::string text = slurp(path);
+    text.replace(text.find("\"scene\": \"plane25\", "), std::string("\"scene\": \"plane25\", ").size(), "");
+    fs::path sceneless = dir / "sceneless.path.json";
+    std::ofstream(sceneless) << text;
+    test::ProcessResult bad = test::runGlimmer({"render", "--path", sceneless.string(), "--out", (dir / "%d.png").string()});
+    EXPECT_EQ(bad.exitCode, 2) << bad.err;
+    EXPECT_NE(bad.err.find("sceneless.path.json names no scene"), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+
+    fs::path err = dir / "ffmpeg.txt";
+    int code = shell("env PATH=/nonexistent " GLIMMER_EXECUTABLE " render --size 48x32 --env none --path " +
+                     path.string() + " --fps 2 --out " + (dir / "kept" / "%03d.png").string() + " --video " +
+                     (dir / "v.mp4").string() + " > /dev/null 2> " + err.string());
+    EXPECT_EQ(code, 1);
+    for (const char* frame : {"000.png", "001.png", "002.png"}) EXPECT_TRUE(fs::exists(dir / "kept" / frame)) << frame;
+    EXPECT_NE(slurp(err).find("ffmpeg"), std::string::npos) << slurp(err);
+    EXPECT_FALSE(fs::exists(dir / "v.mp4"));
+}
+
 TEST(CommandLine, VersionAndMainHelp) {
     test::ProcessResult version = test::runGlimmer({"--version"});
     EXPECT_EQ(version.exitCode, 0);

@@ -18,6 +18,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "offscreen/offscreen.h"
 #include "render/aov.h"
 #include "scene/atrium.h"
@@ -537,6 +538,17 @@ TEST(ScenesFile, NamesResolveToContentFilesThenBuiltins) {
     EXPECT_GT(described.cameras.size(), generated.cameras.size());
     EXPECT_THROW(glimmer::loadScene("no_such_scene"), glimmer::UsageError);
     EXPECT_THROW(glimmer::loadScene("scene.obj"), glimmer::UsageError);
+    // content/atrium.path.json is a camera path, not a scene: the list of known scenes (and the error that shows
+    // it) leaves it out (issue 39, 13).
+    ASSERT_TRUE(std::filesystem::exists(glimmer::defaultContentDir() / "atrium.path.json"));
+    EXPECT_EQ(std::find(content.begin(), content.end(), "atrium.path"), content.end());
+    try {
+        glimmer::loadScene("no_such_scene");
+    } catch (const glimmer::UsageError& e) {
+        std::string message = e.what();
+        EXPECT_EQ(message.find("atrium.path"), std::string::npos) << message;
+        EXPECT_NE(message.find("area_lights"), std::string::npos) << message;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -389,7 +389,8 @@ TEST(Window, TaaAtHalfScaleShowsTheTaauImage) {
     std::string dir = test::makeTempDir("taau-window");
     const std::string shot = dir + "/view.png", taau = dir + "/taau.png", spatial = dir + "/spatial.png";
     ASSERT_EQ(test::runUnderXvfb(std::string(GLIMMER_EXECUTABLE " view --scene plane25 --env none --size 128x128"
-                                             " --render-scale 0.5 --target-fps 0 --set aa=taa --hide-ui --frames 8"
+                                             " --render-scale 0.5 --target-fps 0 --set aa=taa --like-render --hide-ui"
+                                             " --frames 8"
                                              " --screenshot ") + shot + " > /dev/null 2>&1"),
               0);
     const std::vector<std::string> base = {"render", "--scene", "plane25", "--env", "none", "--size", "128x128",

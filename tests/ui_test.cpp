@@ -5,6 +5,11 @@
 #include <cmath>
 #include <set>
 
+#include "glints/glint_mapping.h"
+#include "glints/method_cycle.h"
+#include "glints/methods.h"
+#include "render/aov.h"
+#include "common/aov_ids.glsl"
 #include "render/settings.h"
 #include "ui/camera_controller.h"
 #include "ui/font.h"
@@ -325,6 +330,77 @@ TEST(UiSettingsPanel, MethodSelectorSwitchesMethodAndGeneratesItsSliders) {
     right.rightPressed = true;
     panelFrame(ui, right, settings, window, methods);
     EXPECT_EQ(settings.methods["fake"].count("density"), 0u);
+}
+
+// Issue 39, 9: a parameter each material maps (deliot2023's log_density) shows the reference material's mapped
+// value and one arrow press steps from there, not from the spec's default (16 -> 17 on every material).
+TEST(UiSettingsPanel, MappedParameterStepsFromTheMaterialsValue) {
+    const GlintMethod& deliot = findGlintMethod("deliot2023");
+    const ParamSpec* spec = nullptr;
+    for (const ParamSpec& p : deliot.params)
+        if (p.name == "log_density") spec = &p;
+    ASSERT_TRUE(spec);
+    Material ice;
+    ice.name = "ice";
+    ice.glinty = true;
+    ice.glint.density = 5e3f;   // far from the default's e^16 per UV area
+    const float mapped = materialParams(deliot, ice, {}).at("log_density");
+    ASSERT_GT(std::abs(mapped - spec->defaultValue), 3.0f) << "the test needs a mapped value away from the default";
+    bool found = false;
+    for (int k = 1; k < 60 && !found; ++k) {
+        Context ui;
+        RenderSettings settings;
+        settings.method = "deliot2023";
+        WindowControls window;
+        window.mappedMaterial = ice;
+        panelFrame(ui, {}, settings, window, glintMethods());
+        Input step;
+        step.focusMove = k;
+        step.adjust = 1;
+        panelFrame(ui, step, settings, window, glintMethods());
+        auto values = settings.methods.find("deliot2023");
+        if (values == settings.methods.end() || !values->second.count("log_density")) continue;
+        found = true;
+        EXPECT_NEAR(values->second.at("log_density"), sliderStep(*spec, mapped, 1), 1e-4f)
+            << "mapped " << mapped << ", default " << spec->defaultValue;
+    }
+    EXPECT_TRUE(found) << "no focus position reached the log_density slider";
+}
+
+// Issue 39, 11: N walks every debug view once ("glintscale" is an alias of "extra", where N used to jump back to
+// "final", so ao, shadow and clearcoat were out of reach), and Shift+N walks back.
+TEST(UiWindowKeys, DebugViewCycleReachesEveryView) {
+    std::set<int> all;
+    for (const AovInfo& aov : aovTable()) all.insert(aov.viewId);
+    std::set<int> seen;
+    int view = VIEW_FINAL;
+    for (size_t i = 0; i < all.size(); ++i) {
+        int next = nextDebugView(view, 1).viewId;
+        EXPECT_EQ(nextDebugView(next, -1).viewId, view);
+        view = next;
+        seen.insert(view);
+    }
+    EXPECT_EQ(view, VIEW_FINAL) << "one cycle visits each view once";
+    EXPECT_EQ(seen, all);
+    for (int wanted : {VIEW_AO, VIEW_SHADOW, VIEW_CLEARCOAT}) EXPECT_TRUE(seen.count(wanted)) << wanted;
+}
+
+// Issue 39, 11: Shift+B never puts the left side's method on the right side.
+TEST(UiWindowKeys, SplitMethodCycleSkipsTheLeftMethod) {
+    const auto& methods = glintMethods();
+    ASSERT_GE(methods.size(), 3u);
+    for (const GlintMethod& left : methods) {
+        std::set<std::string> right;
+        std::string at = methods[0].id == left.id ? methods[1].id : methods[0].id;
+        for (size_t i = 0; i < methods.size(); ++i) {
+            at = cycleGlintMethod(at, 1, left.id).id;
+            EXPECT_NE(at, left.id);
+            right.insert(at);
+        }
+        EXPECT_EQ(right.size(), methods.size() - 1) << left.id;
+    }
+    EXPECT_EQ(cycleGlintMethod(methods[0].id, 2).id, methods[2].id);
+    EXPECT_EQ(cycleGlintMethod(methods[0].id, -1).id, methods.back().id);
 }
 
 TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {

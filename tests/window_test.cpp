@@ -62,7 +62,7 @@ void expectWindowEqualsRender(const std::string& name, const std::string& sceneA
     std::string size = std::to_string(width) + "x" + std::to_string(height);
     fs::path windowShot = dir / (name + "_view.png"), rendered = dir / (name + "_render.png");
     ASSERT_EQ(test::runUnderXvfb(std::string(GLIMMER_EXECUTABLE " view ") + sceneArgs + " --size " + size +
-                                 " --frames 3 --hide-ui --screenshot " + windowShot.string() + " > /dev/null 2>&1"),
+                                 " --frames 3 --like-render --hide-ui --screenshot " + windowShot.string() + " > /dev/null 2>&1"),
               0);
     ASSERT_EQ(run(std::string(GLIMMER_EXECUTABLE) + " render " + sceneArgs + " --size " + size +
                   " --frames 3 --out " + rendered.string()), 0);
@@ -88,7 +88,8 @@ TEST(Window, UiPanelAndStatsAreDrawnOverThePicture) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not installed";
     fs::path dir = outputDir();
     fs::path withUi = dir / "ui.png", withoutUi = dir / "noui.png";
-    std::string common = GLIMMER_EXECUTABLE " view --scene sphere --method smooth --size 1280x720 --frames 3 ";
+    std::string common =
+        GLIMMER_EXECUTABLE " view --scene sphere --method smooth --size 1280x720 --frames 3 --like-render ";
     ASSERT_EQ(test::runUnderXvfb(common + "--screenshot " + withUi.string() + " > /dev/null 2>&1"), 0);
     ASSERT_EQ(test::runUnderXvfb(common + "--hide-ui --screenshot " + withoutUi.string() + " > /dev/null 2>&1"), 0);
     ImageF ui = readImage(withUi), plain = readImage(withoutUi);

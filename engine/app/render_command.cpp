@@ -1,4 +1,5 @@
 // glimmer render: one offscreen frame to PNG (tone-mapped sRGB) or EXR (linear float).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -34,8 +35,10 @@ static const char* kRenderHelp =
     "  --method defaults to deliot2023 (--method smooth: no glints). --method-file PATH.glsl loads a user method\n"
     "  (docs/user_methods.md; the first one is the method unless --method is given); anywhere a method is named,\n"
     "  file:PATH.glsl loads one too (--compare deliot2023,file:my_glints.glsl).\n"
-    "  --path renders the camera path recorded in the window (R) at a fixed time step of 1/F s (default 30 fps;\n"
-    "  default N: the whole path); --video encodes the frames with the ffmpeg program.\n"
+    "  --path renders the camera path recorded in the window (R) at a fixed time step: frame i shows the path at\n"
+    "  i/F s (default F 30), so N frames cover (N-1)/F s (default N: the whole path). The scene is the path file's\n"
+    "  \"scene\" unless --scene is given. --video encodes the frames with the ffmpeg program (without ffmpeg the\n"
+    "  --out frames are still written and the run fails at the end, saying so).\n"
     "  --render-scale F (0.25 .. 1) renders at F x the size and outputs the size: with --set aa=taa TAA resolves to\n"
     "  it (TAA upsampling, docs/image.md), otherwise a Catmull-Rom upscale (the window's).\n"
     "  PNG output is tone-mapped sRGB; EXR is linear radiance (or the raw AOV), 32-bit float.\n"
@@ -61,10 +64,19 @@ int runRenderCommand(const std::vector<std::string>& argList) {
 
     // The discrete-facet reference is offered here only (--method reference, --compare ...,reference).
     facets::registerReferenceMethod();
-    RenderRequest request = readCommonRenderOptions(args, "plane90", "deliot2023");
+    // A camera path belongs to its scene: without --scene, render it in the scene the path file names (rendering
+    // the atrium's path over plane90 showed an empty plane).
+    std::optional<std::string> pathFile = args.value("--path");
+    std::string defaultScene = "plane90";
+    // (Looked up in the raw list: ArgReader hands each value out once, and readCommonRenderOptions reads --scene.)
+    bool sceneGiven = std::any_of(argList.begin(), argList.end(), [](const std::string& a) {
+        return a == "--scene" || a.rfind("--scene=", 0) == 0;
+    });
+    if (pathFile && !sceneGiven) defaultScene = sceneOfPathFile(*pathFile);
+    RenderRequest request = readCommonRenderOptions(args, defaultScene, "deliot2023");
     request.width = request.height = 512;
     if (auto size = args.value("--size")) parseSize(*size, "--size", request.width, request.height);
-    if (auto pathFile = args.value("--path")) {
+    if (pathFile) {
         PathRenderOptions path;
         path.pathFile = *pathFile;
         if (int frames = args.intValue("--frames", 0, 1, 1000000); frames > 0) path.frames = frames;
@@ -106,7 +118,9 @@ int runRenderCommand(const std::vector<std::string>& argList) {
     if (!out) throw UsageError("render: --out FILE.png|FILE.exr is required");
     std::filesystem::path outPath(*out);
     ImageFormat format = imageFormatForPath(outPath, "--out");
-    // Fail on an unwritable destination before spending time on the render (the write itself is atomic).
+    // Fail on an unwritable destination before spending time on the render (the write itself is atomic); a
+    // missing folder is created.
+    createOutputFolder(outPath, "--out");
     checkOutputPath(outPath, "--out");
 
     if (compare) {

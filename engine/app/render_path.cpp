@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
@@ -53,12 +54,17 @@ void checkPathRenderOptions(const PathRenderOptions& options) {
         std::string first = framePath(*options.outPattern, 0);
         if (imageFormatForPath(first, "--out") != ImageFormat::Png && options.video)
             throw UsageError("--video: frames must be .png (--out)");
+        createOutputFolder(first, "--out");
         fs::path parent = fs::absolute(first).parent_path();
         if (!fs::is_directory(parent)) throw Error("--out: directory " + parent.string() + " does not exist");
     }
     if (options.video) {
-        if (findProgram("ffmpeg").empty())
-            throw Error("--video: the ffmpeg program is not installed (Debian: apt-get install ffmpeg)");
+        if (findProgram("ffmpeg").empty()) {
+            if (!options.outPattern)
+                throw Error("--video: the ffmpeg program is not installed (Debian: apt-get install ffmpeg)");
+            log::warn("--video: the ffmpeg program is not installed: writing the --out frames only");
+        }
+        createOutputFolder(*options.video, "--video");
         fs::path parent = fs::absolute(*options.video).parent_path();
         if (!fs::is_directory(parent)) throw Error("--video: directory " + parent.string() + " does not exist");
     }
@@ -99,6 +105,13 @@ static fs::path makeFramesFolder() {
     return name;
 }
 
+std::string sceneOfPathFile(const std::string& pathFile) {
+    ui::RecordedPath path = ui::RecordedPath::load(pathFile);
+    if (path.sceneName.empty())
+        throw UsageError("--path: " + pathFile + " names no scene: give --scene NAME");
+    return path.sceneName;
+}
+
 int renderPathSequence(RenderRequest request, const PathRenderOptions& options) {
     ui::RecordedPath path = ui::RecordedPath::load(options.pathFile);
     // The derived count in double first: a long path at a high rate must be refused, not converted to int
@@ -111,6 +124,13 @@ int renderPathSequence(RenderRequest request, const PathRenderOptions& options) 
         throw Error(options.pathFile + text);
     }
     const int frames = options.frames.value_or(int(wholePath));
+    // Frame i is the path at i / fps: say what part of the path the frames cover (12 frames at 30 fps are 0.37 s
+    // of a 7.3 s path).
+    char coverage[256];
+    std::snprintf(coverage, sizeof coverage, "render: %d frames at %g fps cover %.2f s of the path's %.2f s%s", frames,
+                  options.fps, double(frames - 1) / options.fps, path.duration(),
+                  double(frames - 1) / options.fps + 1e-9 < path.duration() ? " (--fps F spaces them 1/F s apart)" : "");
+    log::info(coverage);
     // Frames for a video alone go to a temporary folder that is removed afterwards, whatever happens.
     fs::path temporary;
     struct RemoveFolder {
@@ -140,6 +160,9 @@ int renderPathSequence(RenderRequest request, const PathRenderOptions& options) 
         if (options.outPattern) std::printf("%s\n", file.c_str());
     }
     if (options.video) {
+        if (findProgram("ffmpeg").empty())
+            throw Error("--video: the ffmpeg program is not installed (Debian: apt-get install ffmpeg); the " +
+                        std::to_string(frames) + " frames are " + pattern);
         encodeVideo(pattern, options.fps, *options.video);
         std::printf("%s\n", options.video->c_str());
     }

@@ -19,7 +19,10 @@ struct PathRenderOptions {
 
 // The frame file for frame `index` of `pattern` (one %d / %0Nd field; throws UsageError for anything else).
 std::string framePath(const std::string& pattern, int index);
-// Checks the options and that ffmpeg is installed when a video is asked for (before any rendering).
+// The scene a camera path file names ("scene"); throws UsageError naming the file when it names none.
+std::string sceneOfPathFile(const std::string& pathFile);
+// Checks the options, and that ffmpeg is installed when a video alone is asked for (before any rendering; with
+// --out the frames are rendered and the missing ffmpeg is reported at the end).
 void checkPathRenderOptions(const PathRenderOptions& options);
 int renderPathSequence(RenderRequest request, const PathRenderOptions& options);
 

@@ -23,7 +23,8 @@ static const char* kViewHelp =
     "                    [--method-file PATH.glsl ...]\n"
     "                    [--path CAMERA_PATH.json] [--input-script FILE]\n"
     "                    [--render-scale F] [--target-fps FPS] [--walkthrough] [--stats]\n"
-    "                    [--frames N --screenshot FILE.png|FILE.exr]\n"
+    "                    [--frames N --screenshot FILE.png|FILE.exr [--screenshot-at FRAME:FILE ...]]\n"
+    "                    [--like-render]\n"
     "  Defaults: the atrium with deliot2023. Scenes whose camera stands on a floor start walking (eye 1.7 m,\n"
     "  gravity, steps up to 0.35 m, collision); F toggles flying (free, no collision).\n"
     "  --render-scale F   render at F x the window (0.25 .. 1), resolved to it by TAA upsampling (aa=taa) or\n"
@@ -33,6 +34,11 @@ static const char* kViewHelp =
     "  --walkthrough      play the camera path (key P) from the first frame\n"
     "  --method-file PATH.glsl  a user glint method (docs/user_methods.md), edited live like the built-ins\n"
     "  --stats            print frame times (median, p95) as JSON at exit\n"
+    "  --frames N --screenshot FILE  render N frames with the window's defaults (TAA, bloom, auto exposure; on\n"
+    "                     software renderers render scale 0.25, held fixed) and write the last: the player's image\n"
+    "  --screenshot-at FRAME:FILE  also write the image after frame FRAME (1-based, up to N); repeatable\n"
+    "  --like-render  use `glimmer render`'s defaults instead (scale 1, no TAA): with --hide-ui the\n"
+    "                     screenshot equals `glimmer render`'s image\n"
     "  WASD move, Q/E down/up (flying), Shift faster, wheel speed, right mouse button (or C) looks around,\n"
     "  1-9 scene cameras, P plays the camera path (the recorded one, else the scene's cameras), R records a path\n"
     "  (saved to --path, else <scene>.path.json beside the scene), M/N/I cycle method/debug view/IBL mode,\n"
@@ -52,6 +58,19 @@ int runViewCommand(const std::vector<std::string>& argList) {
     if (auto size = args.value("--size")) parseSize(*size, "--size", options.request.width, options.request.height);
     options.frameLimit = args.intValue("--frames", 0, 0, 1 << 30);
     options.screenshot = args.value("--screenshot");
+    for (const std::string& at : args.values("--screenshot-at")) {
+        size_t colon = at.find(':');
+        char* end = nullptr;
+        long frame = colon == std::string::npos ? 0 : std::strtol(at.c_str(), &end, 10);
+        if (colon == std::string::npos || colon == 0 || end != at.c_str() + colon || frame < 1 ||
+            frame > options.frameLimit || colon + 1 == at.size())
+            throw UsageError("--screenshot-at: '" + at + "' is not FRAME:FILE with FRAME in [1, --frames]");
+        std::string file = at.substr(colon + 1);
+        imageFormatForPath(file, "--screenshot-at");
+        checkOutputPath(file, "--screenshot-at");
+        options.frameScreenshots.push_back({int(frame), file});
+    }
+    options.likeRender = args.flag("--like-render");
     options.hideUi = args.flag("--hide-ui");
     options.vsync = !args.flag("--no-vsync");
     auto readFloat = [&](const char* flag, float lo, float hi) -> std::optional<float> {
@@ -84,14 +103,9 @@ int runViewCommand(const std::vector<std::string>& argList) {
     }
     options.pathFile = args.value("--path");
     args.finish();
-    // The interactive window shows the game image by default (docs/image.md): TAA, a little bloom, auto exposure.
-    // Headless runs (--frames) keep the offscreen defaults so that their screenshot equals `glimmer render`.
-    if (options.frameLimit == 0) {
-        RenderSettings& settings = options.request.settings;
-        if (!settings.isSet(param::aa)) settings.apply("aa=taa");
-        if (!settings.isSet(param::bloom_strength)) settings.apply("bloom.strength=0.04");
-        if (!settings.isSet(param::exposure) && !settings.isSet(param::exposure_auto)) settings.apply("exposure=auto");
-    }
+    // The window's defaults (TAA, bloom, auto exposure, the software switches: ui/window_defaults.h) are applied
+    // where the renderer is known (app/walkthrough/window_settings.h), to headless --frames runs too, so that tests
+    // and measurements see the player's image; --like-render keeps `glimmer render`'s defaults instead.
     if (options.screenshot) {
         imageFormatForPath(*options.screenshot, "--screenshot");
         checkOutputPath(*options.screenshot, "--screenshot");  // before the window opens and renders

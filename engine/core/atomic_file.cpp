@@ -37,6 +37,14 @@ void checkOutputPath(const std::filesystem::path& path, const std::string& flag)
     ::unlink(probe.c_str());
 }
 
+void createOutputFolder(const std::filesystem::path& path, const std::string& flag) {
+    std::error_code ec;
+    std::filesystem::path parent = std::filesystem::absolute(path, ec).parent_path();
+    if (ec || std::filesystem::is_directory(parent, ec)) return;
+    std::filesystem::create_directories(parent, ec);
+    if (ec) throw Error(prefix(flag, path) + "cannot create folder " + parent.string() + " (" + ec.message() + ")");
+}
+
 AtomicFile::AtomicFile(std::filesystem::path target, std::string flag) : target_(std::move(target)), flag_(std::move(flag)) {
     checkOutputPath(target_, flag_);
     static std::atomic<unsigned> counter{0};

@@ -15,6 +15,9 @@ namespace glimmer {
 // target, when present, is a regular file (a FIFO, a device such as /dev/full, or a folder is refused, so
 // nothing blocks or writes into a device). `flag` names the option the path came from ("--out").
 void checkOutputPath(const std::filesystem::path& path, const std::string& flag);
+// Creates the folder `path` will be written in when it is missing (render --out): Error("<flag>: <path>: cannot
+// create folder ...") when that fails (a file in the way, no permission).
+void createOutputFolder(const std::filesystem::path& path, const std::string& flag);
 
 class AtomicFile {
 public:

@@ -15,5 +15,8 @@ struct AovInfo {
 const std::vector<AovInfo>& aovTable();
 // Throws UsageError naming --aov for unknown names.
 const AovInfo& findAov(const std::string& name);
+// The debug view `step` entries after `viewId` in table order (N / Shift+N), wrapping, over the first entry of
+// each view id: aliases ("glintscale" is wang2020's name for "extra") are not stops of their own.
+const AovInfo& nextDebugView(int viewId, int step);
 
 }  // namespace glimmer

@@ -12,18 +12,21 @@
 
 namespace glimmer {
 
+static bool isPlainName(const std::string& name) {
+    return !name.empty() && name.find('/') == std::string::npos && name.find('\\') == std::string::npos &&
+           name.find('.') == std::string::npos;
+}
+
+// Scenes of the content folder by name: `<name>.json` where the name has no dot (camera paths,
+// `<scene>.path.json`, live there too and are no scenes; a dotted name could not be loaded as a name anyway).
 std::vector<std::string> contentSceneNames() {
     std::vector<std::string> names;
     std::error_code error;
     for (const auto& entry : std::filesystem::directory_iterator(defaultContentDir(), error))
-        if (entry.is_regular_file() && entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+        if (entry.is_regular_file() && entry.path().extension() == ".json" && isPlainName(entry.path().stem().string()))
+            names.push_back(entry.path().stem().string());
     std::sort(names.begin(), names.end());
     return names;
-}
-
-static bool isPlainName(const std::string& name) {
-    return !name.empty() && name.find('/') == std::string::npos && name.find('\\') == std::string::npos &&
-           name.find('.') == std::string::npos;
 }
 
 Scene loadScene(const std::string& nameOrPath) {

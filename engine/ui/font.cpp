@@ -1,5 +1,7 @@
 #include "ui/font.h"
 
+#include <algorithm>
+
 #include <stdexcept>
 #include <string>
 
@@ -146,6 +148,20 @@ std::array<uint32_t, kGlyphCount * 2> packedGlyphTable() {
 int textWidth(std::string_view text, int scale) {
     if (text.empty()) return 0;
     return (int(text.size()) * kCellWidth - 1) * scale;
+}
+
+std::vector<std::string> wrapText(const std::string& text, size_t columns) {
+    columns = std::max<size_t>(columns, 1);
+    std::vector<std::string> lines;
+    std::string rest = text;
+    while (rest.size() > columns) {
+        size_t cut = rest.rfind(' ', columns);
+        if (cut == std::string::npos || cut < columns / 2) cut = columns;
+        lines.push_back(rest.substr(0, cut));
+        rest = rest.substr(cut == columns && rest[cut] != ' ' ? cut : cut + 1);
+    }
+    lines.push_back(rest);
+    return lines;
 }
 
 }  // namespace glimmer::ui

@@ -4,7 +4,9 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace glimmer::ui {
 
@@ -25,5 +27,7 @@ std::array<uint32_t, kGlyphCount * 2> packedGlyphTable();
 
 // Width in screen pixels of `text` drawn at integer `scale` (no trailing spacing column).
 int textWidth(std::string_view text, int scale);
+// `text` in lines of at most `columns` characters, broken at spaces where possible (else inside a word).
+std::vector<std::string> wrapText(const std::string& text, size_t columns);
 
 }  // namespace glimmer::ui

@@ -3,6 +3,8 @@
 #include "glints/glint_mapping.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "core/files.h"
 #include "render/aov.h"
@@ -85,6 +87,13 @@ const char* methodParameterValueText(const GlintMethod& method, const RenderSett
     return nullptr;
 }
 
+std::string panelMethodTitle(const std::string& title, int uiScale) {
+    const float room = float((kPanelWidthChars * kCellWidth - 8) * uiScale);
+    if (float(textWidth(title, uiScale)) <= room) return title;
+    size_t bracket = title.find(" (");
+    return bracket == std::string::npos ? title : title.substr(0, bracket);
+}
+
 static std::string prefixOf(const std::string& name) {
     size_t dot = name.find('.');
     std::string prefix = dot == std::string::npos ? std::string() : name.substr(0, dot);
@@ -117,14 +126,33 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
         }
         if (!methods.empty()) {
             const GlintMethod& method = methods[size_t(methodIndex)];
-            ui.label(method.title);
+            // The description on one row where it fits, else its citation (the part before " (..."), wrapped only
+            // if even that is too long: the method section must keep the panel's sections on a 1280x720 window
+            // (PanelFit), and the whole description is the notice shown when the method is selected.
+            ui.paragraph(panelMethodTitle(method.title, ui.scale()));
             // A user method: where it comes from (edits to the file reload it, header included).
-            if (method.isUserMethod()) ui.label("file " + displayPath(method.sourceFile));
+            if (method.isUserMethod()) ui.paragraph("file " + displayPath(method.sourceFile));
             if (method.params.empty()) ui.label("(no parameters)");
             for (const ParamSpec& spec : method.params) {
                 if (panelHidesMethodParameter(method, spec.name)) continue;
                 float value = paramOr(settings.methodValues(method.id), spec);
-                Edit edit = ui.slider(spec.name, spec, value, methodParameterValueText(method, settings, spec.name));
+                const char* valueText = methodParameterValueText(method, settings, spec.name);
+                // A mapped parameter not set: it shows, and edits start from, the value the mapping gives the
+                // reference material ("9.2 mat", the material named above), so the first step is a small change, not a jump to the default.
+                std::string mappedText;
+                if (valueText && window.mappedMaterial) {
+                    value = materialParams(method, *window.mappedMaterial, settings.methodValues(method.id))
+                                .at(spec.name);
+                    char number[32];
+                    std::snprintf(number, sizeof number, "%.3g", double(value));
+                    int choice = int(std::lround(value));
+                    mappedText = (!spec.choices.empty() && choice >= 0 && choice < int(spec.choices.size())
+                                      ? spec.choices[size_t(choice)]
+                                      : std::string(number)) +
+                                 " mat";
+                    valueText = mappedText.c_str();
+                }
+                Edit edit = ui.slider(spec.name, spec, value, valueText);
                 if (edit == Edit::Changed) settings.methods[method.id][spec.name] = value;
                 if (edit == Edit::Reset) settings.methods[method.id].erase(spec.name);
                 result.settingsChanged |= edit != Edit::None;

@@ -3,11 +3,13 @@
 // by prefix (image, light, env, material overrides), the debug-view selector and the window's own controls.
 // A method added to glintMethods() or a parameter added to commonParams() gets its widgets with no UI code.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "glints/methods.h"
 #include "render/settings.h"
+#include "scene/scene.h"
 #include "ui/ui.h"
 
 namespace glimmer::ui {
@@ -27,6 +29,10 @@ struct WindowControls {
     // User glint method files the panel offers to load (content/methods/ and the folders of loaded ones), as
     // shown; glints/user/user_methods.h.
     std::vector<std::string> methodFileChoices;
+    // The material whose mapped values the method sliders start from while a mapped parameter is not set (the
+    // scene's first glinty material, with the material overrides applied); none: they start from the default.
+    // Without it one arrow press set log_density to default + 1 = 17 on every material and wiped the glints.
+    std::optional<Material> mappedMaterial;
 };
 
 struct PanelResult {
@@ -61,6 +67,10 @@ PanelLayout panelLayout(int width, int height, int statsLines);
 // mapped values are then in effect, not the spec's default; nullptr (show the number) otherwise.
 const char* methodParameterValueText(const GlintMethod& method, const RenderSettings& settings,
                                      const std::string& name);
+
+// What the panel shows of a method's description: all of it where it fits the panel's width, else the citation
+// before " (" (the window's notice shows the whole description when the method is selected).
+std::string panelMethodTitle(const std::string& title, int uiScale);
 
 // The speed slider's range (also used by the wheel).
 ParamSpec moveSpeedSpec();

@@ -137,6 +137,14 @@ void Context::endPanel() {
     }
     scroll = std::clamp(scroll, 0.0f, maxScroll);
     draw_.quads()[p.backgroundQuad].rect = background;
+    // Content taller than the panel: a scroll bar in the right padding says that the wheel scrolls, and how far.
+    if (maxScroll > 0.0f) {
+        float barX = p.area.x + p.area.w - pad + float(scale_), barW = float(2 * scale_);
+        draw_.fill({barX, p.area.y, barW, visible}, palette::kRow);
+        float thumbH = std::max(float(8 * scale_), visible * visible / contentHeight);
+        float thumbY = p.area.y + (visible - thumbH) * (scroll / maxScroll);
+        draw_.fill({barX, thumbY, barW, thumbH}, palette::kDim);
+    }
     panelAreas_[p.id] = background;
     panel_.reset();
 }
@@ -233,6 +241,13 @@ void Context::label(std::string_view text, Color color) {
     layout_.emplace_back(std::string(text), row);
 }
 
+void Context::paragraph(std::string_view text, Color color) {
+    if (!panel_) return;
+    float width = panel_->area.w - float(8 * scale_);
+    size_t columns = size_t(std::max(1.0f, (width + float(scale_)) / float(kCellWidth * scale_)));
+    for (const std::string& line : wrapText(std::string(text), columns)) label(line, color);
+}
+
 bool Context::button(std::string_view text) {
     if (!panel_) return false;
     Rect row;
@@ -310,6 +325,24 @@ Edit Context::slider(std::string_view text, const ParamSpec& spec, float& value,
     Rect valueArea = row;
     if (choice) {
         valueArea.w = std::round(row.w * 0.55f);
+        // A label longer than the remaining 45% ("angular_covariance" was cut to "angular_covaria") takes room from
+        // the value area, down to what the longest choice and the arrows need.
+        float labelRoom = row.w - valueArea.w - float(4 * scale_);
+        if (float(textWidth(text, scale_)) > labelRoom) {
+            size_t longest = 0;
+            for (const std::string& c : spec.choices) longest = std::max(longest, c.size());
+            float needed = float((int(longest) + 2) * kCellWidth * scale_ + 2 * scale_);
+            valueArea.w = std::round(std::max(needed, std::min(valueArea.w, row.w - float(textWidth(text, scale_)) -
+                                                                                  float(6 * scale_))));
+        }
+        // A choice longer than the value area (a user method's name) takes room from a short label.
+        int shownIndex = std::clamp(int(std::lround(value)), 0, std::max(choiceCount - 1, 0));
+        float shownWidth = choiceCount > 0 ? float(textWidth(spec.choices[size_t(shownIndex)], scale_)) : 0.0f;
+        float cellWidth = float(kCellWidth * scale_);
+        if (shownWidth + 2.0f * cellWidth + float(2 * scale_) > valueArea.w)
+            valueArea.w = std::round(std::max(valueArea.w, std::min(shownWidth + 2.0f * cellWidth + float(2 * scale_),
+                                                                     row.w - float(textWidth(text, scale_)) -
+                                                                         float(6 * scale_))));
         valueArea.x = row.x + row.w - valueArea.w;
     }
 

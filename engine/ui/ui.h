@@ -110,6 +110,9 @@ public:
     std::string openSection(const std::string& panelId) const;
     void setOpenSection(const std::string& panelId, const std::string& text);
     void label(std::string_view text, Color color = palette::kDim);
+    // A label wrapped over as many rows as the panel's width needs (method descriptions, file paths): a long one
+    // was clipped at the panel's edge.
+    void paragraph(std::string_view text, Color color = palette::kDim);
     bool button(std::string_view text);
     bool checkbox(std::string_view text, bool& value);
     // "text   < option >": a click on the left half of the value steps back, on the right half forward.

@@ -1,7 +1,8 @@
 // HDR radiance to display: bloom mixed in (Jimenez 2014: a lerp towards the blurred image keeps energy),
 // exposure (manual stops times the metered exposure when exposure=auto), a tone curve (image/tone_curves.glsl),
 // sRGB encoding. Debug views (u_viewport.w != 0) are shown without any of that, clamped, so channels read directly; the albedo
-// (a colour) is sRGB-encoded like every PNG colour, so it displays as the base colour it is.
+// (a colour) is sRGB-encoded like every PNG colour, so it displays as the base colour it is; depth and footprint,
+// whose values lie far outside 0..1, are mapped into it (below).
 #include "common/bindings.glsl"
 #include "common/frame.glsl"
 #include "image/tone_curves.glsl"
@@ -31,6 +32,14 @@ void main() {
     } else if (view == VIEW_ALBEDO) display = linearToSrgb(hdr);
     else if (view == VIEW_NORMAL || view == VIEW_TANGENT) display = hdr * 0.5 + 0.5;
     else if (view == VIEW_UV) display = vec3(fract(hdr.xy), 0.0);
+    // Distances in metres on a log scale (0 m black, 1 m 0.125, 15 m 0.5, 255 m and beyond white): clamped raw
+    // metres were white past 1 m. The EXR keeps the metres.
+    else if (view == VIEW_DEPTH) display = vec3(clamp(log2(1.0 + hdr.r) / 8.0, 0.0, 1.0));
+    // Footprint: R the anisotropy ratio (>= 1) as log2(ratio) / 4 (1 black, 16 full), G the LOD log2(minor axis in
+    // UV) from -16 (black) to 0 (full); B method-specific, clamped. Clamped raw values were red or magenta
+    // everywhere. The EXR keeps the raw values.
+    else if (view == VIEW_FOOTPRINT)
+        display = clamp(vec3(log2(max(hdr.r, 1.0)) / 4.0, (hdr.g + 16.0) / 16.0, hdr.b), 0.0, 1.0);
     else display = clamp(hdr, 0.0, 1.0);
     o_color = vec4(display, 1.0);
 }

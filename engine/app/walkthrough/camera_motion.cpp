@@ -1,6 +1,7 @@
 #include "app/walkthrough/camera_motion.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 
 #include "app/walkthrough/overlay.h"
@@ -25,9 +26,16 @@ void CameraMotion::buildCollision(const Scene& scene) {
     }
 }
 
-void CameraMotion::startScene(const Scene& scene, const Camera& start, std::filesystem::path pathFile, bool scripted) {
+void CameraMotion::startScene(const Scene& scene, const std::string& sceneSpec, const Camera& start,
+                              std::filesystem::path pathFile, bool pathGiven, bool scripted) {
     cameras_ = scene.cameras;
     sceneName_ = scene.name;
+    // A scene file named by a relative path is written absolute: the path file may be rendered from elsewhere.
+    std::error_code fileError;
+    sceneSpec_ = std::filesystem::is_regular_file(sceneSpec, fileError)
+                     ? std::filesystem::absolute(sceneSpec, fileError).string()
+                     : sceneSpec;
+    pathGiven_ = pathGiven;
     buildCollision(scene);
     motion_ = std::make_unique<ui::PlayerMotion>(collision_.get());
     // Scripted input has exact times: no frame counts as a stall, so results do not depend on machine load.
@@ -103,7 +111,18 @@ void CameraMotion::togglePathPlaying() {
                  " s");
 }
 
-// R: starts recording the camera, or stops and saves the path as JSON.
+std::filesystem::path CameraMotion::recordingFile() const {
+    std::error_code ec;
+    if (pathGiven_ && !std::filesystem::exists(pathFile_, ec)) return pathFile_;
+    for (int n = 1;; ++n) {
+        char name[64];
+        std::snprintf(name, sizeof name, "-%03d.path.json", n);
+        std::filesystem::path candidate = sceneName_ + name;
+        if (!std::filesystem::exists(candidate, ec)) return candidate;
+    }
+}
+
+// R: starts recording the camera, or stops and saves the path as JSON (never over an existing file).
 void CameraMotion::toggleRecording(double now) {
     if (!controls_.recording) {
         stopPathPlaying();
@@ -116,9 +135,10 @@ void CameraMotion::toggleRecording(double now) {
     controls_.recording = false;
     controls_.hasRecordedPath = !recorded_.empty();
     try {
-        recorded_.save(pathFile_, sceneName_);
-        log::info("view: wrote camera path ", pathFile_.string(), " (", recorded_.samples().size(), " samples)");
-        showMessage_("wrote " + pathFile_.string());
+        std::filesystem::path file = recordingFile();
+        recorded_.save(file, sceneSpec_);
+        log::info("view: wrote camera path ", file.string(), " (", recorded_.samples().size(), " samples)");
+        showMessage_("wrote " + file.string() + " (P plays it)");
     } catch (const std::exception& e) {
         log::error("view: ", e.what());
         showMessage_(e.what());

@@ -25,8 +25,13 @@ public:
     CameraMotion(ui::WindowControls& controls, std::function<void(const std::string&)> showMessage);
 
     // A scene starts at `start`: collision of `scene`'s triangles (walking needs them), its cameras, and the camera
-    // path in `pathFile` when that exists (R saves there). `scripted`: input with exact times, no frame is a stall.
-    void startScene(const Scene& scene, const Camera& start, std::filesystem::path pathFile, bool scripted);
+    // path in `pathFile` when that exists (P plays it). R never overwrites a file: it saves to `pathFile` only when
+    // that was given (--path) and does not exist yet, else to the working folder's next free
+    // `<scene>-NNN.path.json` (a shipped path such as content/atrium.path.json feeds P, --walkthrough and the
+    // benchmark). `sceneSpec`: the scene as named on the command line, written into the path file so that
+    // `render --path` finds it. `scripted`: input with exact times, no frame is a stall.
+    void startScene(const Scene& scene, const std::string& sceneSpec, const Camera& start,
+                    std::filesystem::path pathFile, bool pathGiven, bool scripted);
 
     const Camera& camera() const { return motion_->camera(); }
     ui::MoveMode mode() const { return motion_->mode(); }
@@ -45,6 +50,7 @@ public:
 
 private:
     void buildCollision(const Scene& scene);
+    std::filesystem::path recordingFile() const;   // where R saves now (a file that does not exist)
 
     ui::WindowControls& controls_;
     std::function<void(const std::string&)> showMessage_;
@@ -56,6 +62,8 @@ private:
     std::unique_ptr<ui::CameraPath> path_;       // the tour of the scene's cameras
     ui::RecordedPath recorded_;
     std::filesystem::path pathFile_;
+    bool pathGiven_ = false;
+    std::string sceneSpec_;     // written into recorded paths
     double recordStart_ = 0.0;
     float pathTime_ = 0.0f;
 };

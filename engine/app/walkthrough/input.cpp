@@ -12,6 +12,7 @@ namespace glimmer {
 namespace {
 constexpr float kLookRadiansPerPixel = 0.0025f;
 constexpr float kWheelSpeedFactor = 1.2f;
+constexpr double kQuitConfirmSeconds = 3.0;
 }  // namespace
 
 WindowInput::WindowInput(GlfwWindow& window, ui::WindowControls& controls, CameraMotion& camera,
@@ -41,9 +42,15 @@ void WindowInput::startScriptClock(double now) {
     if (script_ && scriptOffset_ < 0.0) scriptOffset_ = now;
 }
 
-std::optional<std::string> WindowInput::dueScriptScreenshot() {
-    if (scriptScreenshot_.empty() || scriptScreenshotDelay_-- > 0) return std::nullopt;
-    return std::exchange(scriptScreenshot_, std::string());
+std::vector<std::string> WindowInput::dueScriptScreenshots() {
+    std::vector<std::string> due;
+    std::vector<PendingShot> waiting;
+    for (PendingShot& shot : scriptScreenshots_) {
+        if (shot.framesToWait-- > 0) waiting.push_back(std::move(shot));
+        else due.push_back(std::move(shot.path));
+    }
+    scriptScreenshots_ = std::move(waiting);
+    return due;
 }
 
 bool WindowInput::panelScriptInputPending() const {
@@ -90,8 +97,16 @@ ui::Input WindowInput::handleKeys(const WindowEvents& events, int width, int hei
         case GLFW_KEY_ENTER:
         case GLFW_KEY_KP_ENTER: input.activate = true; break;
         case GLFW_KEY_ESCAPE:
-            if (captured_) setCaptured(false);
-            else window_.requestClose();
+            // Esc releases the mouse; otherwise it quits only when pressed twice within kQuitConfirmSeconds, so a
+            // stray press does not end a session.
+            if (captured_) {
+                setCaptured(false);
+            } else if (now_ - escapeAt_ <= kQuitConfirmSeconds) {
+                window_.requestClose();
+            } else {
+                escapeAt_ = now_;
+                actions_.showMessage("press Esc again to quit");
+            }
             break;
         case GLFW_KEY_F5: actions_.reloadAllShaders(); break;
         case GLFW_KEY_F12: actions_.requestScreenshot(shift); break;
@@ -133,6 +148,7 @@ ui::Input WindowInput::handleKeys(const WindowEvents& events, int width, int hei
 // One input-script event at frame-clock time `t`: keys go through the same paths as the window's.
 void WindowInput::applyScriptEvent(const ui::ScriptEvent& e, double t, int width, int height) {
     auto action = [&](int key) {
+        now_ = t;   // a scripted key acts at its own time (Esc's confirmation window)
         WindowEvents single;
         single.keys.push_back({key, shiftHeld() ? GLFW_MOD_SHIFT : 0, false});
         ui::Input input = handleKeys(single, width, height);
@@ -162,8 +178,7 @@ void WindowInput::applyScriptEvent(const ui::ScriptEvent& e, double t, int width
         break;
     }
     case ui::ScriptEvent::Kind::Screenshot:
-        scriptScreenshot_ = e.path;
-        scriptScreenshotDelay_ = 1;
+        scriptScreenshots_.push_back({e.path, 1});
         break;
     case ui::ScriptEvent::Kind::Quit: scriptQuit_ = true; break;
     }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/walkthrough/camera_motion.h"
 #include "platform/glfw_window.h"
@@ -31,6 +32,7 @@ public:
     virtual void cycleIblMode(int step) = 0;              // I, Shift+I
     virtual bool pointerOverUi() const = 0;               // the mouse is over the panel (shown)
     virtual void dragDivider(ui::Input& input, bool leftPressed, int width) = 0;   // the split's divider
+    virtual void showMessage(const std::string& text) = 0;   // a transient notice
 };
 
 class WindowInput {
@@ -51,11 +53,12 @@ public:
     // The script's clock starts once the first frame (shader builds, environment precomputation) is done.
     void startScriptClock(double now);
 
-    // A script screenshot due at the end of this frame (written one frame after its event, so that the panel and
-    // the stats strip have seen every earlier event).
-    std::optional<std::string> dueScriptScreenshot();
+    // The script screenshots due at the end of this frame, in script order (each written one frame after its
+    // event, so that the panel and the stats strip have seen every earlier event). Events that fall in one frame
+    // all get written, with that frame's image.
+    std::vector<std::string> dueScriptScreenshots();
     // The script asked to quit and has no screenshot pending.
-    bool scriptQuit() const { return scriptQuit_ && scriptScreenshot_.empty(); }
+    bool scriptQuit() const { return scriptQuit_ && scriptScreenshots_.empty(); }
     bool mouseCaptured() const { return captured_; }
 
 private:
@@ -73,12 +76,16 @@ private:
     ui::KeyHolds keys_;
     double now_ = 0.0;
     std::unique_ptr<ui::ScriptPlayer> script_;
-    std::string scriptScreenshot_;
-    int scriptScreenshotDelay_ = 0;
+    struct PendingShot {
+        std::string path;
+        int framesToWait = 1;   // frame ends to let pass before writing it
+    };
+    std::vector<PendingShot> scriptScreenshots_;   // every requested one, in order (none is dropped)
     bool scriptQuit_ = false;
     double scriptOffset_ = -1.0;     // frame-clock time of script time 0 (the end of the first frame)
     ui::Input pendingScriptInput_;   // panel keys from the script, given to the panel next frame
     bool captured_ = false, rightLook_ = false, lookStarted_ = false;
+    double escapeAt_ = -1e30;        // frame-clock time of the last Esc that asked to confirm quitting
     glm::dvec2 lastCursor_{0.0};
 };
 

@@ -29,10 +29,26 @@ MethodFiles::MethodFiles(MethodFilesHost& host, ui::WindowControls& controls, co
 void MethodFiles::poll() {
     if (!watcher_) return;
     std::vector<std::filesystem::path> changed = watcher_->poll();
+    // The folders of method files outside the shader root hold other files too (screenshots, notes): only the
+    // files the programs read count as edits; anything else there may only add or remove a method file choice.
+    auto canonical = [](const std::filesystem::path& f) {
+        std::error_code ec;
+        std::filesystem::path c = std::filesystem::weakly_canonical(f, ec);
+        return ec ? f : c;
+    };
+    std::vector<std::filesystem::path> dependencies;
+    for (const auto& f : watchedFiles()) dependencies.push_back(canonical(f));
+    bool otherFiles = false;
     for (auto& [folder, watcher] : methodWatchers_)
-        for (const auto& f : watcher->poll())
-            if (std::find(changed.begin(), changed.end(), f) == changed.end()) changed.push_back(f);
-    if (changed.empty()) return;
+        for (const auto& f : watcher->poll()) {
+            if (std::find(dependencies.begin(), dependencies.end(), canonical(f)) == dependencies.end())
+                otherFiles = true;
+            else if (std::find(changed.begin(), changed.end(), f) == changed.end()) changed.push_back(f);
+        }
+    if (changed.empty()) {
+        if (otherFiles) refreshMethodFileChoices();
+        return;
+    }
     for (const auto& f : changed) log::info("view: shader changed: ", f.string());
     replacedMethods_.clear();
     reloadMethodHeaders(changed);
@@ -52,14 +68,18 @@ void MethodFiles::poll() {
 
 // User methods (--method-file, glints/user/user_methods.h) may live anywhere: their folders and the folders of the
 // files they include from outside the shader root are watched too (without subfolders).
-void MethodFiles::watchMethodFolders() {
-    if (!watcher_) return;
+std::vector<std::filesystem::path> MethodFiles::watchedFiles() const {
     std::vector<std::filesystem::path> files = host_.renderer().shaderDependencies();
     if (Renderer* split = host_.splitRenderer())
         for (const auto& f : split->shaderDependencies()) files.push_back(f);
     for (const GlintMethod& m : glintMethods())
         if (m.isUserMethod()) files.push_back(m.sourceFile);
-    for (const auto& file : files) {
+    return files;
+}
+
+void MethodFiles::watchMethodFolders() {
+    if (!watcher_) return;
+    for (const auto& file : watchedFiles()) {
         std::filesystem::path folder = file.parent_path();
         auto rel = std::filesystem::relative(folder, watcher_->root());
         bool underRoot = !rel.empty() && *rel.begin() != "..";

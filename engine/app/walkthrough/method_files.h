@@ -51,6 +51,8 @@ public:
     const std::map<std::filesystem::path, std::string>& fileErrors() const { return methodFileErrors_; }
 
 private:
+    // Every file the programs read (both renderers) and every user method file.
+    std::vector<std::filesystem::path> watchedFiles() const;
     void watchMethodFolders();
     void reloadMethodHeaders(std::vector<std::filesystem::path>& changed);
     void refreshMethodFileChoices();

@@ -12,20 +12,6 @@ namespace {
 
 constexpr double kMessageSeconds = 4.0;
 
-// Splits `text` into lines of at most `columns` characters (breaking at spaces where possible).
-std::vector<std::string> wrapText(const std::string& text, size_t columns) {
-    std::vector<std::string> lines;
-    std::string rest = text;
-    while (rest.size() > columns) {
-        size_t cut = rest.rfind(' ', columns);
-        if (cut == std::string::npos || cut < columns / 2) cut = columns;
-        lines.push_back(rest.substr(0, cut));
-        rest = rest.substr(cut == columns ? cut : cut + 1);
-    }
-    lines.push_back(rest);
-    return lines;
-}
-
 // Three significant digits at most (the stats line lists every pass: it must fit 1280 pixels).
 std::string formatMsShort(double ms) {
     char text[32];
@@ -59,8 +45,10 @@ std::vector<StatsLine> Overlay::statsLines(const Renderer& renderer, const Windo
     if (float(ui::textWidth(frame + " | " + timers, uiScale)) <= available) {
         lines.push_back({frame + " | " + timers});
     } else {
-        lines.push_back({frame});
-        lines.push_back({timers});
+        // Wrapped at the window's width: one pass list line was clipped ("... lightin") at 1280x720.
+        size_t columns = size_t(std::max(10.0f, (available + float(uiScale)) / float(ui::kCellWidth * uiScale)));
+        for (const std::string& l : ui::wrapText(frame, columns)) lines.push_back({l});
+        for (const std::string& l : ui::wrapText(timers, columns)) lines.push_back({l});
     }
     char samples[32] = "";
     if (renderer.accumulating()) std::snprintf(samples, sizeof samples, " %u spp", unsigned(status.sampleIndex) + 1u);
@@ -77,7 +65,7 @@ std::vector<StatsLine> Overlay::statsLines(const Renderer& renderer, const Windo
         lines.push_back({note, true});
         lines.push_back({where, true});
     }
-    if (!renderer.lastEditPasses().empty()) {
+    if (status.edited && !renderer.lastEditPasses().empty()) {
         std::string edits = "last edit:";
         for (const PassTiming& t : renderer.lastEditPasses()) edits += " " + t.name + " " + formatMsShort(t.wallMs);
         lines.push_back({edits + " ms"});
@@ -92,7 +80,7 @@ void Overlay::drawErrors(ui::Context& ui, const std::vector<std::string>& errors
     size_t columns = size_t(std::max(10.0f, (float(width) - 2.0f * margin) / float(ui::kCellWidth * ui.scale())));
     std::vector<std::string> lines;
     for (const std::string& error : errors)
-        for (const std::string& l : wrapText("SHADER ERROR " + error, columns)) lines.push_back(l);
+        for (const std::string& l : ui::wrapText(error, columns)) lines.push_back(l);
     if (lines.empty()) return;
     float boxHeight = float(lines.size()) * line + 2.0f * margin;
     float top = float(height) - statsHeight - boxHeight;
@@ -108,11 +96,17 @@ void Overlay::drawStats(ui::Context& ui, const std::vector<StatsLine>& stats, in
     float top = float(height) - statsHeight;
     ui.box({0.0f, top, float(width), statsHeight}, {0, 0, 0, 200});
     if (now < messageUntil_) {
-        // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner.
-        float textW = float(ui::textWidth(message_, ui.scale()));
-        float boxW = std::min(textW + 2.0f * margin, float(width) * 0.6f);
-        ui.box({float(width) - boxW - margin, margin, boxW, line + margin}, {0, 0, 0, 200});
-        ui.textAt({float(width) - boxW, margin + margin * 0.5f}, message_, ui::palette::kHeading, boxW - margin);
+        // Transient notices (screenshot written, shaders rebuilt, camera) in the top-right corner, wrapped within
+        // 60% of the width (a long one was clipped).
+        size_t columns = size_t(std::max(10.0f, (float(width) * 0.6f - 2.0f * margin) / float(ui::kCellWidth * ui.scale())));
+        std::vector<std::string> lines = ui::wrapText(message_, columns);
+        float textW = 0.0f;
+        for (const std::string& l : lines) textW = std::max(textW, float(ui::textWidth(l, ui.scale())));
+        float boxW = textW + 2.0f * margin;
+        ui.box({float(width) - boxW - margin, margin, boxW, float(lines.size()) * line + margin}, {0, 0, 0, 200});
+        for (size_t i = 0; i < lines.size(); ++i)
+            ui.textAt({float(width) - boxW, margin + margin * 0.5f + float(i) * line}, lines[i], ui::palette::kHeading,
+                      boxW - margin);
     }
     for (size_t i = 0; i < stats.size(); ++i)
         ui.textAt({margin, top + margin + float(i) * line}, stats[i].text,

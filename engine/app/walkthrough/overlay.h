@@ -28,6 +28,9 @@ struct WindowStatus {
     uint32_t sampleIndex = 0;    // accumulation sample of Monte Carlo IBL modes
     bool mouseCaptured = false;
     bool softwareRenderer = false;
+    // An edit (panel, keys, hot reload) happened: only then are the on-demand passes that ran "the last edit's"
+    // (at start-up they are the first build, not an edit).
+    bool edited = false;
 };
 
 struct StatsLine {

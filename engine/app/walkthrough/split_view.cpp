@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "glints/method_cycle.h"
 #include "glints/methods.h"
 #include "ui/font.h"
 
@@ -19,19 +20,19 @@ SplitView::SplitView(const std::optional<std::string>& method, float position) {
     enabled_ = true;
 }
 
+// The right side never shows the left side's method (a comparison with itself): when M made them equal, the
+// right side moves on to the next method.
 std::string SplitView::rightMethod(const std::string& leftMethod) const {
-    if (!method_.empty()) return method_;
-    for (const GlintMethod& m : glintMethods())
-        if (m.id != leftMethod) return m.id;
-    return leftMethod;
+    if (method_.empty()) {   // the first other method (smooth, unless it is the left one)
+        for (const GlintMethod& m : glintMethods())
+            if (m.id != leftMethod) return m.id;
+        return leftMethod;
+    }
+    return method_ != leftMethod ? method_ : cycleGlintMethod(method_, 1, leftMethod).id;
 }
 
 void SplitView::cycleMethod(const std::string& leftMethod) {
-    const auto& methods = glintMethods();
-    int n = int(methods.size()), current = 0;
-    for (int i = 0; i < n; ++i)
-        if (methods[size_t(i)].id == rightMethod(leftMethod)) current = i;
-    method_ = methods[size_t((current + 1) % n)].id;
+    method_ = cycleGlintMethod(rightMethod(leftMethod), 1, leftMethod).id;
     enabled_ = true;
 }
 

@@ -7,6 +7,8 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "offscreen/offscreen.h"
 
@@ -16,6 +18,10 @@ struct ViewOptions {
     RenderRequest request;                  // scene, camera, size, method, --set, --aov, --shader-dir
     int frameLimit = 0;                     // > 0: render this many frames, write the screenshot, exit
     std::optional<std::string> screenshot;  // .png (window image) or .exr (HDR radiance / debug view)
+    std::vector<std::pair<int, std::string>> frameScreenshots;  // --screenshot-at: (1-based frame, file)
+    // --like-render: `glimmer render`'s settings and scale 1 instead of the window's defaults, so that a
+    // --hide-ui screenshot equals the offscreen render (tests that compare the two).
+    bool likeRender = false;
     bool hideUi = false;
     bool vsync = true;
     // Split-screen comparison (key B toggles, Shift+B cycles the right-hand method, drag the divider): the left
@@ -25,7 +31,8 @@ struct ViewOptions {
     std::optional<std::string> inputScript; // --input-script: timed key events replayed (ui/input_script.h)
     std::optional<std::string> pathFile;    // --path: camera path played by P and written by R
     // Resolution (render/dynamic_resolution.h): unset = defaults (software renderers: target 12 fps with dynamic
-    // resolution from scale 0.25, except for --screenshot runs, which stay at scale 1; GPUs: scale 1).
+    // resolution from scale 0.25, held fixed at 0.25 in --frames runs so that their images repeat; scale 1 with
+    // --like-render; GPUs: scale 1).
     std::optional<float> renderScale;       // --render-scale: start (or fixed) scale in [0.25, 1]
     std::optional<float> targetFps;         // --target-fps: > 0 adapts the scale, 0 keeps it fixed
     bool printStats = false;                // --stats: frame-time JSON on stdout at exit

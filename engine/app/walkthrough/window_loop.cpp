@@ -36,6 +36,12 @@
 namespace glimmer {
 namespace {
 
+// A headless run that writes images (--frames with --screenshot or --screenshot-at): its scale must not depend on
+// the machine's speed. Runs without images (--frames N --stats) adapt like the window.
+bool writesFrameScreenshots(const ViewOptions& options) {
+    return options.frameLimit > 0 && (options.screenshot || !options.frameScreenshots.empty());
+}
+
 class Walkthrough final : public WindowActions, public MethodFilesHost {
 public:
     explicit Walkthrough(const ViewOptions& options)
@@ -46,6 +52,7 @@ public:
           camera_(controls_, [this](const std::string& text) { showMessage(text); }),
           split_(options.splitMethod, options.splitPosition) {
         const Camera& start = baseScene_.camera(options.request.camera);
+        startCamera_ = start.name;
         if (options.request.environment) baseScene_.environment = *options.request.environment;
         std::filesystem::path shaderRoot =
             options.request.shaderRoot.empty() ? defaultShaderDir() : options.request.shaderRoot;
@@ -55,12 +62,13 @@ public:
         loading_->show(LoadingScreen::Shaders, *uiRenderer_);
         scene_ = baseScene_;
         applySceneOverrides(options.request.settings, scene_);
+        updateMappedMaterial();
         gpuScene_ = std::make_unique<GpuScene>(scene_);
         std::string rendererName = window_.rendererString();
         softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
                             rendererName.find("softpipe") != std::string::npos;
         renderer_ = std::make_unique<Renderer>(
-            shaderRoot, windowRenderSettings(options.request.settings, softwareRenderer_, options.screenshot.has_value()));
+            shaderRoot, windowRenderSettings(options.request.settings, softwareRenderer_, options.likeRender));
         renderer_->setAsyncGpuTimers(true);
         methodFiles_ = std::make_unique<MethodFiles>(*this, controls_, shaderRoot, options.frameLimit == 0);
         loading_->show(LoadingScreen::Collision, *uiRenderer_);
@@ -74,8 +82,9 @@ public:
         window_.setVsync(controls_.vsync);
         uiHidden_ = options.hideUi;
         log::info("view: ", rendererName, ", ", window_.versionString());
-        resolution_ = std::make_unique<WindowResolution>(shaderRoot, softwareRenderer_, options.screenshot.has_value(),
-                                                         options.renderScale, options.targetFps);
+        resolution_ = std::make_unique<WindowResolution>(shaderRoot, softwareRenderer_, writesFrameScreenshots(options),
+                                                         options.likeRender, options.renderScale,
+                                                         options.targetFps);
         if (options.playWalkthrough) camera_.togglePathPlaying();
     }
 
@@ -95,7 +104,8 @@ public:
             double dt = now - previous;
             frameMs_ = frame == 0 ? dt * 1e3 : frameMs_ * 0.9 + dt * 1e3 * 0.1;
             now_ = now;
-            if (frame >= 2) resolution_->addFrame(dt * 1e3);   // frame 0 builds shaders and the environment
+            // Frame 0 builds shaders and the environment; a still view holds its scale (window_resolution.h).
+            if (frame >= 2) resolution_->addFrame(dt * 1e3, stillFrames_);
             int width = 0, height = 0;
             window_.framebufferSize(width, height);
             WindowEvents events = window_.takeEvents();
@@ -113,6 +123,8 @@ public:
             // (headless --frames runs converge at once, like offscreen renders).
             renderer_->setExposureAdaptation(options_.frameLimit == 0 && frame > 0 ? float(1.0 - std::exp(-dt / 0.5)) : 1.0f);
             drawFrame(width, height);
+            for (const auto& [at, file] : options_.frameScreenshots)
+                if (frame + 1 == at) writeScreenshot(file);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();
             if (!loading_->finished()) finishLoading();
@@ -141,8 +153,9 @@ private:
     void printStats() const {
         nlohmann::json stats = resolution_->statsJson();
         stats["scene"] = baseScene_.name;
-        stats["camera"] = options_.request.camera;
+        stats["camera"] = startCamera_;
         stats["method"] = renderer_->settings().method;
+        stats["ibl"] = renderer_->settings().ibl;
         int w = 0, h = 0;
         window_.framebufferSize(w, h);
         stats["window"] = {w, h};
@@ -180,34 +193,53 @@ private:
         if (next.ibl == defaultIblOf(methods[size_t(current)])) next.ibl = defaultIblOf(chosen);
         next.method = chosen.id;
         applySettings(next);
-        showMessage("method " + renderer_->settings().method);
+        announceMethod();
     }
 
+    // I / Shift+I: the next IBL mode that runs with the current method (modes made for one method, such as
+    // glint-is for kemppinen2025, are skipped under the others, so every press moves on and the cycle wraps).
     void cycleIblMode(int step) override {
         const auto& modes = iblModes();
+        const std::string& method = renderer_->settings().method;
         int n = int(modes.size()), current = 0;
         for (int i = 0; i < n; ++i)
             if (modes[size_t(i)].id == renderer_->settings().ibl) current = i;
+        int chosen = current;
+        for (int k = 1; k <= n; ++k) {
+            int candidate = ((current + step * k) % n + n) % n;
+            if (iblModeRunsWith(modes[size_t(candidate)], method)) {
+                chosen = candidate;
+                break;
+            }
+        }
         RenderSettings next = renderer_->settings();
-        next.ibl = modes[size_t(((current + step) % n + n) % n)].id;
+        next.ibl = modes[size_t(chosen)].id;
         applySettings(next);
-        showMessage("ibl " + next.ibl + (renderer_->settings().ibl == next.ibl ? "" : ": " + methodError_));
+        log::info("view: ibl ", renderer_->settings().ibl);
+        showMessage("ibl " + renderer_->settings().ibl);
     }
 
     void cycleDebugView(int step) override {
-        const auto& views = aovTable();
-        int n = int(views.size()), current = 0;
-        for (int i = 0; i < n; ++i)
-            if (views[size_t(i)].viewId == renderer_->settings().debugView) current = i;
         RenderSettings next = renderer_->settings();
-        const AovInfo& view = views[size_t(((current + step) % n + n) % n)];
+        const AovInfo& view = nextDebugView(next.debugView, step);
         next.debugView = view.viewId;
         applySettings(next);
         showMessage("debug view " + view.name + ": " + view.meaning);
     }
 
     // Live edits: renderer settings (method, parameters, view) and the scene's material/light overrides.
-    void applySettings(const RenderSettings& next) override {
+    void applySettings(const RenderSettings& requested) override {
+        RenderSettings next = requested;
+        edited_ = true;
+        // An IBL mode made for another method (picked on the panel) is refused with a notice in the window's words,
+        // not a red error box; the mode in use stays.
+        if (const IblMode& mode = findIblMode(next.ibl); !iblModeRunsWith(mode, next.method)) {
+            showMessage("IBL mode " + mode.id + " works only with method " + requiredMethodsText(mode) +
+                        " (M changes the method)");
+            next.ibl = iblModeRunsWith(findIblMode(renderer_->settings().ibl), next.method)
+                           ? renderer_->settings().ibl
+                           : defaultIblOf(findGlintMethod(next.method));
+        }
         ++settingsVersion_;
         bool commonChanged = next.common != renderer_->settings().common;
         try {
@@ -220,6 +252,7 @@ private:
         if (commonChanged) {
             scene_ = baseScene_;
             applySceneOverrides(renderer_->settings(), scene_);
+            updateMappedMaterial();
             gpuScene_->updateMaterialsAndLights(scene_);
         }
     }
@@ -228,12 +261,35 @@ private:
     Renderer* splitRenderer() override { return split_.renderer(); }
     ui::UiRenderer& uiRenderer() override { return *uiRenderer_; }
     void renameMethod(const std::string& from, const std::string& to) override { split_.renameMethod(from, to); }
-    void programsRebuilt() override { ++settingsVersion_; }
+    void programsRebuilt() override {
+        ++settingsVersion_;
+        edited_ = true;
+    }
     void showMessage(const std::string& text) override { overlay_.notify(text, now_); }
 
+    // The whole description of the method in use (the panel may show only its citation) and, when the method maps
+    // material values, whose values the "mat" sliders show.
+    void announceMethod() {
+        const GlintMethod& method = findGlintMethod(renderer_->settings().method);
+        std::string text = "method " + method.id + ": " + method.title;
+        if (!method.materialMapping.empty() && controls_.mappedMaterial)
+            text += "; \"mat\" values: material " + controls_.mappedMaterial->name;
+        showMessage(text);
+    }
+
     // ---- scenes ----
-    // Where a recorded path goes: --path FILE, else <scene>.path.json in the scene file's folder (the content
-    // folder for scenes described there, the current folder for generated ones).
+    // The method sliders of mapped parameters start from the first glinty material's values (ui/settings_panel.h).
+    void updateMappedMaterial() {
+        controls_.mappedMaterial.reset();
+        for (const Material& m : scene_.materials)
+            if (m.glinty) {
+                controls_.mappedMaterial = m;
+                break;
+            }
+    }
+
+    // The camera path P plays: --path FILE, else <scene>.path.json in the scene file's folder (the content folder
+    // for scenes described there, the current folder for generated ones). R saves elsewhere when that exists.
     std::filesystem::path defaultPathFile() const {
         if (options_.pathFile) return *options_.pathFile;
         std::filesystem::path scene(options_.request.scene);
@@ -246,7 +302,8 @@ private:
 
     // Camera, collision and camera path of the current scene, starting at `start`, and the panel's scene list.
     void startScene(const Camera& start) {
-        camera_.startScene(scene_, start, defaultPathFile(), options_.inputScript.has_value());
+        camera_.startScene(scene_, options_.request.scene, start, defaultPathFile(), options_.pathFile.has_value(),
+                           options_.inputScript.has_value());
         controls_.sceneNames = builtinSceneNames();
         auto it = std::find(controls_.sceneNames.begin(), controls_.sceneNames.end(), options_.request.scene);
         if (it == controls_.sceneNames.end()) {
@@ -271,6 +328,7 @@ private:
         if (options_.request.environment) baseScene_.environment = *options_.request.environment;
         scene_ = baseScene_;
         applySceneOverrides(renderer_->settings(), scene_);
+        updateMappedMaterial();
         gpuScene_ = std::make_unique<GpuScene>(scene_);
         options_.request.scene = name;
         options_.pathFile.reset();
@@ -284,11 +342,13 @@ private:
     bool showUi() const { return !uiHidden_; }
 
     std::vector<std::string> errors() const {
+        // Only compile and link errors are called shader errors; a refused setting or a bad method file is not one.
         std::vector<std::string> all;
-        for (const auto& [program, error] : renderer_->shaderErrors()) all.push_back(error + "  [" + program + "]");
-        if (!methodFiles_->uiError().empty()) all.push_back(methodFiles_->uiError() + "  [ui]");
-        if (!methodError_.empty()) all.push_back(methodError_);
-        for (const auto& [file, error] : methodFiles_->fileErrors()) all.push_back(error + "  [method file]");
+        for (const auto& [program, error] : renderer_->shaderErrors())
+            all.push_back("SHADER ERROR " + error + "  [" + program + "]");
+        if (!methodFiles_->uiError().empty()) all.push_back("SHADER ERROR " + methodFiles_->uiError() + "  [ui]");
+        if (!methodError_.empty()) all.push_back("ERROR " + methodError_);
+        for (const auto& [file, error] : methodFiles_->fileErrors()) all.push_back("ERROR " + error + "  [method file]");
         return all;
     }
 
@@ -308,6 +368,7 @@ private:
             status.sampleIndex = frames_.sampleIndex();
             status.mouseCaptured = input_->mouseCaptured();
             status.softwareRenderer = softwareRenderer_;
+            status.edited = edited_;
             stats = Overlay::statsLines(*renderer_, status, float(width) - 2.0f * margin, ui_.scale());
         }
         float statsHeight = showUi() ? float(stats.size()) * line + 2.0f * margin : 0.0f;
@@ -316,7 +377,11 @@ private:
             RenderSettings edited = renderer_->settings();
             ui::PanelResult result =
                 ui::settingsPanel(ui_, edited, controls_, margin, margin, float(height) - statsHeight - 2.0f * margin);
-            if (result.settingsChanged) applySettings(edited);
+            if (result.settingsChanged) {
+                std::string before = renderer_->settings().method;
+                applySettings(edited);
+                if (renderer_->settings().method != before) announceMethod();
+            }
             if (result.vsyncChanged) window_.setVsync(controls_.vsync);
             if (result.cameraRequested >= 0) camera_.jumpToCamera(result.cameraRequested);
             if (result.toggleWalkthrough) camera_.togglePathPlaying();
@@ -337,8 +402,14 @@ private:
     void drawFrame(int width, int height) {
         int renderW = width, renderH = height;
         resolution_->internalSize(width, height, renderW, renderH);
-        frames_.render(*renderer_, scene_, *gpuScene_, camera_.camera(), width, height, renderW, renderH,
-                       settingsVersion_);
+        const Camera& camera = camera_.camera();
+        bool still = camera.position == stillCamera_.position && camera.target == stillCamera_.target &&
+                     camera.up == stillCamera_.up && camera.verticalFovDegrees == stillCamera_.verticalFovDegrees &&
+                     settingsVersion_ == stillVersion_;
+        stillFrames_ = still ? stillFrames_ + 1 : 0;
+        stillCamera_ = camera;
+        stillVersion_ = settingsVersion_;
+        frames_.render(*renderer_, scene_, *gpuScene_, camera, width, height, renderW, renderH, settingsVersion_);
         present_.resize(width, height);
         resolution_->present(*renderer_, present_.framebuffer(), width, height);
         if (split_.enabled())
@@ -350,7 +421,7 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBlitNamedFramebuffer(present_.framebuffer(), 0, 0, 0, width, height, 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        if (auto path = input_->dueScriptScreenshot()) writeScreenshot(*path);
+        for (const std::string& path : input_->dueScriptScreenshots()) writeScreenshot(path);
         if (pendingScreenshot_) {
             writeScreenshot(nextScreenshotName(baseScene_.name, pendingScreenshot_ == 2 ? ".exr" : ".png"));
             pendingScreenshot_ = 0;
@@ -382,10 +453,16 @@ private:
     PresentTarget present_;
     ui::Context ui_;
     bool uiHidden_ = false, softwareRenderer_ = false;
+    bool edited_ = false;            // an edit happened (the strip's "last edit" line is about it)
     double frameMs_ = 0.0, now_ = 0.0;
     uint64_t settingsVersion_ = 0;   // every edit that restarts the accumulation changes it
     std::string methodError_;
+    std::string startCamera_;        // the camera the window opened at (the scene's first unless --camera)
     int pendingScreenshot_ = 0;      // 1 PNG, 2 EXR, at the end of this frame
+    // Consecutive frames drawn with the same camera and settings (window_resolution.h holds the scale then).
+    unsigned stillFrames_ = 0;
+    Camera stillCamera_;
+    uint64_t stillVersion_ = ~uint64_t(0);
 };
 
 }  // namespace

@@ -6,18 +6,20 @@
 
 namespace glimmer {
 
-WindowResolution::WindowResolution(const std::filesystem::path& shaderRoot, bool softwareRenderer, bool deterministic,
-                                   std::optional<float> renderScale, std::optional<float> targetFps)
+WindowResolution::WindowResolution(const std::filesystem::path& shaderRoot, bool softwareRenderer, bool headless,
+                                   bool likeRender, std::optional<float> renderScale,
+                                   std::optional<float> targetFps)
     : upscale_(shaderRoot) {
-    bool defaults = softwareRenderer && !deterministic;
-    float fps = targetFps ? *targetFps : (defaults && !renderScale ? kSoftwareTargetFps : 0.0f);
+    bool defaults = softwareRenderer && !likeRender;
+    float fps = targetFps ? *targetFps : (defaults && !renderScale && !headless ? kSoftwareTargetFps : 0.0f);
     float scale = renderScale ? *renderScale : (defaults ? kSoftwareStartScale : 1.0f);
     control_ = DynamicResolution(scale, fps);
 }
 
-void WindowResolution::addFrame(double frameMs) {
+void WindowResolution::addFrame(double frameMs, unsigned stillFrames) {
     times_.add(frameMs);
     scales_.push_back(control_.scale());
+    if (stillFrames >= kStillHoldFrames) return;
     if (control_.addFrame(frameMs)) ++changes_;
 }
 

@@ -22,13 +22,19 @@ public:
     // (docs/measurements.md); faster machines raise it from there.
     static constexpr float kSoftwareTargetFps = 12.0f, kSoftwareStartScale = 0.25f;
 
-    // Defaults per renderer: software renderers adapt towards kSoftwareTargetFps from kSoftwareStartScale (unless
-    // `deterministic`: a --screenshot run stays at scale 1), GPUs render at scale 1. Flags override.
-    WindowResolution(const std::filesystem::path& shaderRoot, bool softwareRenderer, bool deterministic,
-                     std::optional<float> renderScale, std::optional<float> targetFps);
+    // Defaults per renderer: software renderers adapt towards kSoftwareTargetFps from kSoftwareStartScale; a
+    // `headless` run that writes screenshots holds kSoftwareStartScale, the floor where the atrium sits on two cores, so that its
+    // images do not depend on the machine's speed; `likeRender` renders at scale 1, like `glimmer render`.
+    // GPUs render at scale 1. Flags override.
+    WindowResolution(const std::filesystem::path& shaderRoot, bool softwareRenderer, bool headless,
+                     bool likeRender, std::optional<float> renderScale, std::optional<float> targetFps);
 
-    // One frame's wall time (ms, frames after the first); adapts the scale.
-    void addFrame(double frameMs);
+    // One frame's wall time (ms, frames after the first); adapts the scale, except once the view has been still
+    // for kStillHoldFrames frames (`stillFrames`: consecutive frames with the same camera and settings): a scale
+    // change resets the TAA history, so a controller that kept adjusting made a still camera's image change. It
+    // adapts again as soon as the camera moves or a setting changes.
+    void addFrame(double frameMs, unsigned stillFrames = 0);
+    static constexpr unsigned kStillHoldFrames = 24;
     void internalSize(int windowW, int windowH, int& w, int& h) const { control_.internalSize(windowW, windowH, w, h); }
     // The renderer's display image (internal size) to `target` (window size), from column `fromColumn` on.
     void present(const Renderer& renderer, GLuint target, int windowW, int windowH, int fromColumn = 0);

@@ -4,10 +4,10 @@
 
 namespace glimmer {
 
-// `requested` with the window's defaults: on software renderers the switches that keep the atrium interactive on
-// two cores (texture filtering, half-resolution shadows and AO, TAA and post passes at the render size, geometry
-// LOD), and on every renderer the split lighting programs. A --screenshot run keeps the offscreen defaults so that
-// its image equals `glimmer render`'s.
-RenderSettings windowRenderSettings(const RenderSettings& requested, bool softwareRenderer, bool screenshotRun);
+// `requested` with the window's defaults (ui/window_defaults.h: the game image, TAA, bloom and auto exposure, the
+// split lighting programs, and on software renderers the switches that keep the atrium interactive on two cores),
+// for interactive and headless runs alike. `likeRender` (view --like-render) keeps `glimmer render`'s defaults so
+// that a screenshot equals its image.
+RenderSettings windowRenderSettings(const RenderSettings& requested, bool softwareRenderer, bool likeRender);
 
 }  // namespace glimmer

@@ -181,13 +181,20 @@ const IblMode& findIblMode(const std::string& id) {
     throw UsageError("--ibl: unknown mode '" + id + "' (known: " + known + ")");
 }
 
-void checkIblModeMethod(const IblMode& mode, const std::string& methodId) {
-    if (mode.requiredMethods.empty()) return;
-    if (std::find(mode.requiredMethods.begin(), mode.requiredMethods.end(), methodId) != mode.requiredMethods.end())
-        return;
+bool iblModeRunsWith(const IblMode& mode, const std::string& methodId) {
+    return mode.requiredMethods.empty() ||
+           std::find(mode.requiredMethods.begin(), mode.requiredMethods.end(), methodId) != mode.requiredMethods.end();
+}
+
+std::string requiredMethodsText(const IblMode& mode) {
     std::string list;
     for (const std::string& m : mode.requiredMethods) list += (list.empty() ? "" : " or ") + m;
-    throw UsageError("--ibl " + mode.id + " needs --method " + list + " (got " + methodId + ")");
+    return list;
+}
+
+void checkIblModeMethod(const IblMode& mode, const std::string& methodId) {
+    if (iblModeRunsWith(mode, methodId)) return;
+    throw UsageError("--ibl " + mode.id + " needs --method " + requiredMethodsText(mode) + " (got " + methodId + ")");
 }
 
 std::string iblParamsGlsl(const IblMode& mode) {

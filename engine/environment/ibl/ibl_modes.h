@@ -62,6 +62,10 @@ struct IblMode {
 const std::vector<IblMode>& iblModes();
 // Throws UsageError("--ibl: unknown mode 'x' (known: ...)").
 const IblMode& findIblMode(const std::string& id);
+// Whether `mode` can run with glint method `methodId` (its requiredMethods are empty or name it).
+bool iblModeRunsWith(const IblMode& mode, const std::string& methodId);
+// "kemppinen2025" or "a or b": the methods `mode` requires (empty when any will do).
+std::string requiredMethodsText(const IblMode& mode);
 // Throws UsageError when `mode` cannot run with glint method `methodId`.
 void checkIblModeMethod(const IblMode& mode, const std::string& methodId);
 
