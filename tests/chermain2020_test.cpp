@@ -32,6 +32,7 @@
 #include "offscreen/offscreen.h"
 #include "scene/builtin_scenes.h"
 #include "support/golden.h"
+#include "support/measure.h"
 #include "support/process.h"
 #include "support/test_needs.h"
 
@@ -222,7 +223,7 @@ TEST(Chermain2020Dictionary, CacheRoundTripAndRejection) {
 // Generation time of the authors' dictionary (16 x 192 x 64) on this machine, 2 threads, and the time to read it
 // back from a cache folder (load + checksum + value check); printed, not asserted.
 TEST(Chermain2020Dictionary, GenerationTimeOfTheAuthorsSize) {
-    if (!std::getenv("GLIMMER_MEASURE")) GTEST_SKIP() << "set GLIMMER_MEASURE=1 to time the generation";
+    if (!test::fullMeasurement()) GTEST_SKIP() << "set GLIMMER_MEASURE=1 to time the generation";
     fs::path dir = test::makeTempDir("chermain2020_timing");
     Stopwatch clock;
     ch::LoadedDictionary generated = ch::loadOrGenerateDictionary(ch::DictionarySpec{}, dir, 2);

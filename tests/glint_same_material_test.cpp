@@ -20,6 +20,7 @@
 #include "glints/methods.h"
 #include "offscreen/offscreen.h"
 #include "render/aov.h"
+#include "support/measure.h"
 #include "support/test_needs.h"
 
 // What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
@@ -206,10 +207,7 @@ Row measure(const std::string& method, const std::string& scene, const SmoothFra
     return row;
 }
 
-bool measureAll() {
-    const char* v = std::getenv("GLIMMER_MEASURE");
-    return v && std::string(v) == "1";
-}
+bool measureAll() { return test::fullMeasurement(); }
 
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "render/shader_interface.h"
 #include "scene/scene_loader.h"
+#include "support/measure.h"
 #include "support/test_needs.h"
 
 // What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
@@ -334,6 +335,9 @@ fs::path sharedHdris() {
 
 // Auto exposure: the atrium under every shared HDR map reads as a normally exposed image. Band: the mean of the
 // sRGB-encoded display values in [0.25, 0.60] (manual exposure 0 spans ~0.1 to ~0.8 across these maps).
+// Each map costs its environment precompute and a capture of the atrium's reflection probes (about 18 s). CI: the two
+// maps that bound the measurement (studio_small_03: the lowest metered EV, -1.70 against -0.44 to -0.65 for the
+// others; rooitou_park: the darkest mean, 0.418); GLIMMER_MEASURE=1: every shared map.
 TEST(ImageExposure, AtriumUnderEverySharedMapIsSensiblyExposed) {
     fs::path dir = sharedHdris();
     if (!fs::exists(dir)) GTEST_SKIP() << "no shared HDR maps at " << dir;
@@ -341,6 +345,7 @@ TEST(ImageExposure, AtriumUnderEverySharedMapIsSensiblyExposed) {
     for (const auto& entry : fs::directory_iterator(dir))
         if (entry.path().extension() == ".hdr" || entry.path().extension() == ".exr") maps.push_back(entry.path());
     std::sort(maps.begin(), maps.end());
+    maps = test::mapsForThisRun(maps);
     ASSERT_FALSE(maps.empty());
     RenderRequest request;
     request.scene = "atrium";

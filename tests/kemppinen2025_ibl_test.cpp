@@ -35,6 +35,7 @@
 #include "render/settings.h"
 #include "render/shader_interface.h"
 #include "scene/builtin_scenes.h"
+#include "support/measure.h"
 #include "support/process.h"
 #include "support/test_needs.h"
 
@@ -449,9 +450,12 @@ void checkConvergence(const ConvergenceResult& r, const char* label) {
 // (density 3e4 per m^2, alpha* 0.005: about 20 glints per pixel footprint, lobes narrower than the angular cells
 // at the LOD of this view), where the paper says importance sampling pays ("effectiveness increases with the
 // specularity"). 128x128, reference glint-is 128 spp with its own seed, 1..8 spp.
+// Each NDF costs about 29 s (158 spp at 128x128). CI: GGX, whose ndf-is slope (measured -0.23) is the nearest to its
+// bound; GLIMMER_MEASURE=1 adds Beckmann.
 TEST(Kemppinen2025Ibl, ConvergenceOnGlintySphereProceduralSky) {
     SphereIblRig rig("procedural");
-    for (int ndf : {0, 1}) {
+    const std::vector<int> ndfs = test::fullMeasurement() ? std::vector<int>{0, 1} : std::vector<int>{0};
+    for (int ndf : ndfs) {
         const char* label = ndf == 0 ? "procedural sky, GGX" : "procedural sky, Beckmann";
         SphereLook look;
         look.ndf = ndf;

@@ -27,6 +27,7 @@
 #include "render/renderer.h"
 #include "render/settings.h"
 #include "scene/builtin_scenes.h"
+#include "support/measure.h"
 #include "support/test_needs.h"
 
 // What these suites need beyond the CPU (their ctest label: tests/support/test_needs.h).
@@ -315,9 +316,8 @@ TEST(Kemppinen2025, FiniteAtDegenerateHugeFootprints) {
 // its rows (deterministic: a second render gives the same floats).
 TEST(Kemppinen2025, HighDensityConvergesToSmooth) {
     const int size = 128;
-    const char* measure = std::getenv("GLIMMER_MEASURE");
     std::vector<float> micros = {0.01f};
-    if (measure && std::string(measure) == "1") micros = {0.01f, 0.03f, 0.1f};
+    if (test::fullMeasurement()) micros = {0.01f, 0.03f, 0.1f};
     std::printf("scene    ndf       micro_roughness  mean gap  worst 4x4-block gap\n");
     for (const char* sceneName : {"plane90", "plane25"}) {
         GlintRig rig(sceneName);

@@ -192,6 +192,40 @@ TEST(ReflectionProbes, NotRecapturedWhenNothingChanged) {
     EXPECT_TRUE(ran("probes.capture") || ran("probes.load"));
 }
 
+// The split screen's second renderer (Renderer(root, settings, source)) reads the first one's probes and
+// environment: nothing is captured or prepared again, and its image equals that of a renderer with probes of its own.
+TEST(ReflectionProbes, SecondViewReadsTheFirstRenderersProbes) {
+    ProbeRig rig;
+    buildWallScene(rig.scene);
+    rig.finish();
+    rig.render({});
+    const ReflectionProbes& probes = rig.renderer->probes();
+    const int updates = probes.captures() + probes.diskLoads();
+    ASSERT_EQ(updates, 1);
+    ASSERT_FALSE(probes.probes().empty());
+
+    RenderSettings settings = rig.renderer->settings();
+    settings.method = "deliot2023";
+    Renderer second(defaultShaderDir(), settings, *rig.renderer);
+    second.renderView(rig.scene, *rig.gpu, rig.scene.cameras[0], kSize, kSize);
+    EXPECT_EQ(&second.probes(), &probes);
+    EXPECT_EQ(&second.environment(), &rig.renderer->environment());
+    EXPECT_EQ(probes.captures() + probes.diskLoads(), updates) << "the second view captured the probes again";
+    const std::vector<float> shared = second.readHdr();
+
+    Renderer own(defaultShaderDir(), settings);
+    own.renderView(rig.scene, *rig.gpu, rig.scene.cameras[0], kSize, kSize);
+    EXPECT_EQ(own.probes().captures() + own.probes().diskLoads(), 1);
+    const std::vector<float> reference = own.readHdr();
+    ASSERT_EQ(shared.size(), reference.size());
+    float worst = 0.0f;
+    for (size_t i = 0; i < shared.size(); ++i) worst = std::max(worst, std::abs(shared[i] - reference[i]));
+    EXPECT_LE(worst, 1e-4f) << "the shared probes render as the second renderer's own would";
+    // The mirror's wall side shows the probes (red), so an unpublished probe block would fail above.
+    const glm::vec3 wallSide = pixel(shared, rig.pixelOf(glm::vec3(1.0f, 0.0f, 1.0f) / std::sqrt(2.0f)));
+    EXPECT_GT(wallSide.x, 2.0f * wallSide.y);
+}
+
 // The disk cache (reflection_probes.h): a second renderer reads the probes the first captured, and renders the same
 // image; a damaged file, another scene or another environment is captured again, never read.
 TEST(ReflectionProbes, DiskCacheGivesTheSameImageAndRejectsDamage) {

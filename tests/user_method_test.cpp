@@ -20,6 +20,7 @@
 #include "offscreen/offscreen.h"
 #include "render/aov.h"
 #include "render/settings.h"
+#include "support/measure.h"
 #include "support/process.h"
 #include "support/test_needs.h"
 
@@ -290,8 +291,7 @@ TEST(UserMethodCheck, ExamplePassesEveryRule) {
     options.size = 96;
     options.timingSize = 128;
     options.timingFrames = 3;
-    const char* measure = std::getenv("GLIMMER_MEASURE");
-    bool timing = measure && std::string(measure) == "1";
+    bool timing = test::fullMeasurement();
     if (!timing) options.rules = {"convergence", "furnace", "finite"};
     checks::CheckReport report = checks::checkMethod(id, options);
     std::string table = checks::formatTable(report);

@@ -126,6 +126,19 @@ std::filesystem::path defaultCacheDir() {
     return std::filesystem::temp_directory_path() / "glimmer";
 }
 
+size_t keptFilesPerKind(size_t fallback) {
+    const char* text = std::getenv("GLIMMER_CACHE_KEEP");
+    if (!text || !*text) return fallback;
+    char* end = nullptr;
+    const long value = std::strtol(text, &end, 10);
+    if (*end != '\0' || value < 1 || value > 1000) {
+        log::warn("GLIMMER_CACHE_KEEP='", std::string(text).substr(0, 32), "' is not a count in [1, 1000]; keeping ",
+                  fallback, " files of each kind");
+        return fallback;
+    }
+    return size_t(value);
+}
+
 std::string encodeCacheFile(const CacheKey& key, std::string_view payload) {
     std::string out(kMagic, sizeof kMagic);
     put32(out, kContainerVersion);

@@ -69,6 +69,9 @@ std::string fileContentHash(const std::filesystem::path& path);
 
 // $GLIMMER_CACHE_DIR, else $XDG_CACHE_HOME/glimmer, else $HOME/.cache/glimmer, else <temp>/glimmer.
 std::filesystem::path defaultCacheDir();
+// How many files of one kind a cache folder keeps (pruneLeastRecentlyUsed): `fallback`, or GLIMMER_CACHE_KEEP
+// (1..1000) when set. A test run uses two dozen environments, each 38 MB: its folder keeps them all.
+size_t keptFilesPerKind(size_t fallback);
 
 class CacheDir {
 public:

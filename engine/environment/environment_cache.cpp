@@ -119,7 +119,7 @@ bool EnvironmentCache::store(const std::vector<GLuint>& textures, const std::arr
 }
 
 void EnvironmentCache::pruneOldFiles() const {
-    dir_.pruneLeastRecentlyUsed("environment_", ".bin", size_t(kMaxFiles));
+    dir_.pruneLeastRecentlyUsed("environment_", ".bin", cache::keptFilesPerKind(size_t(kMaxFiles)));
 }
 
 }  // namespace glimmer

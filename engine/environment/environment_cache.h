@@ -7,7 +7,8 @@
 // payload is every level of the two textures as RGBA32F plus the nine SH coefficients, in the texture layout the
 // caller allocated; it is accepted only when its size matches that layout exactly and every value is finite and
 // non-negative (core/cache_file.h adds the checksums and the atomic write). One file per key; the folder keeps
-// the kMaxFiles most recently used environment files (read or written: cache::CacheDir::pruneLeastRecentlyUsed).
+// the kMaxFiles most recently used environment files (read or written: cache::CacheDir::pruneLeastRecentlyUsed;
+// GLIMMER_CACHE_KEEP overrides the count).
 #pragma once
 #include <glad/gl.h>
 #include <glm/glm.hpp>

@@ -36,8 +36,24 @@ Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& setti
                    Environment* sharedEnvironment)
     : shaderRoot_(std::move(shaderRoot)), settings_(settings), kind_(kind) {
     gl::enableDebugOutput();
-    if (!sharedEnvironment) ownEnvironment_ = std::make_unique<Environment>(shaderRoot_);
+    if (!sharedEnvironment) ownEnvironment_ = std::make_shared<Environment>(shaderRoot_);
     environment_ = sharedEnvironment ? sharedEnvironment : ownEnvironment_.get();
+    initialise();
+}
+
+Renderer::Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings, Renderer& source)
+    : shaderRoot_(std::move(shaderRoot)), settings_(settings), kind_(FrameKind::Full) {
+    gl::enableDebugOutput();
+    // The split screen's right side used to capture its own probes and prepare its own environment: a 4.8 s freeze
+    // at the first B (issue 39). The same scene and common parameters give the same probes and maps.
+    borrowedEnvironment_ = source.ownEnvironment_;
+    environment_ = source.environment_;
+    probes_ = source.probes_;
+    probesBorrowed_ = true;
+    initialise();
+}
+
+void Renderer::initialise() {
     frameUniforms_ = gl::createBuffer(sizeof(FrameUniforms), nullptr);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
@@ -72,7 +88,8 @@ void Renderer::buildFrameList() {
     };
     add(std::make_unique<ShadowMapPass>(root, ShadowArray::Sun, shadowMaps_));    // its prepare() fits every view
     add(std::make_unique<ShadowMapPass>(root, ShadowArray::Local, shadowMaps_));
-    ProbesPass* probes = add(std::make_unique<ProbesPass>(root));                 // captures on demand
+    if (!probes_) probes_ = std::make_shared<ReflectionProbes>(root);
+    ProbesPass* probes = add(std::make_unique<ProbesPass>(probes_, !probesBorrowed_));   // captures on demand
     add(std::make_unique<EnvironmentGlintsPass>(root));   // environment glints' levels on demand (after the probes)
     add(std::make_unique<GBufferPass>(root));
     add(std::make_unique<GtaoPass>(root, ambientOcclusion_));                     // sky bake on demand
@@ -96,6 +113,7 @@ void Renderer::buildFrameList() {
     }
     frame_ = std::move(list);
     lighting_ = lighting, probesPass_ = probes, taa_ = taa, exposure_ = exposure, tonemap_ = tonemap;
+    if (!probesBorrowed_) probes_->invalidate();   // rebuilt programs (F5) capture again, as a fresh renderer would
     shadowMaps_->invalidate();   // the maps were drawn by the previous depth program
     resized_ = false;            // the new passes own no targets yet
 }
@@ -206,7 +224,7 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
 
 bool Renderer::accumulating() const { return findIblMode(settings_.ibl).accumulates; }
 
-const ReflectionProbes& Renderer::probes() const { return probesPass_->probes(); }
+const ReflectionProbes& Renderer::probes() const { return *probes_; }
 
 void Renderer::recordOnDemand(const std::string& name, double ms, bool measurePasses) {
     if (measurePasses) timer_.recordWallOnly(name, ms);
@@ -290,7 +308,10 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
         .recordOnDemand = [&](const std::string& name, double ms) { recordOnDemand(name, ms, measurePasses); },
     };
     // Passes may render other views here (probes, per-object maps), so the frame's own state is set after.
-    for (const auto& pass : frame_) pass->prepare(prepare);
+    for (const auto& pass : frame_) {
+        if (prepareListener_) prepareListener_(pass->name());
+        pass->prepare(prepare);
+    }
 
     // TAA jitters the projection: a screen-space translation (its prepare() chose the jitter).
     glm::mat4 projection = view.camera.projection(view.aspect());

@@ -5,6 +5,7 @@
 // (GpuScene).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -47,6 +48,10 @@ public:
     // renderer's views (probe captures) shares that renderer's environment instead of preparing its own.
     Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings, FrameKind kind = FrameKind::Full,
              Environment* sharedEnvironment = nullptr);
+    // A second full view of `source`'s scene (the window's split screen): it reads source's environment and
+    // reflection probes, which source prepares (source renders first in each frame), instead of building and
+    // capturing its own; it keeps them alive while it lives.
+    Renderer(std::filesystem::path shaderRoot, const RenderSettings& settings, Renderer& source);
     ~Renderer();
 
     // Switches method or parameters. Rebuilds the lighting program when the method changes.
@@ -70,6 +75,11 @@ public:
     // available: no glFinish, no stall. passTimings() then holds gpuMs (wallMs 0) of a frame a few frames old.
     // Meaningless on software renderers (llvmpipe times the submit, not the work).
     void setAsyncGpuTimers(bool enabled) { asyncGpuTimers_ = enabled; }
+    // Called with each pass's name before its prepare(), where the on-demand work runs (probe captures, the sky
+    // bake, method tables): the window's loading frame names the step in progress. Empty (the default): none.
+    void setPrepareListener(std::function<void(const std::string& passName)> listener) {
+        prepareListener_ = std::move(listener);
+    }
 
     // Renders one view: the environment for the scene, every pass's prepare() in list order (shadow fitting, probe
     // captures, the sky bake, the method's data, TAA's jitter...), the frame's uniforms, then every pass that runs.
@@ -131,6 +141,7 @@ public:
     void resetHistory();
 
 private:
+    void initialise();   // what every constructor does once the environment is chosen
     // The frame list, in order (every pass of FrameKind, then the method's passes after lighting). Builds all
     // first, then swaps: a failure leaves the previous list in place.
     void buildFrameList();
@@ -146,8 +157,13 @@ private:
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
     FrameKind kind_;
-    std::unique_ptr<Environment> ownEnvironment_;
+    std::shared_ptr<Environment> ownEnvironment_;        // null when the environment is another renderer's
+    std::shared_ptr<Environment> borrowedEnvironment_;   // source's, for a second view (keeps it alive)
     Environment* environment_;
+    // The reflection probes: this renderer's (invalidated by every buildFrameList: rebuilt shaders capture again),
+    // or source's for a second view, which never updates them (probesBorrowed_).
+    std::shared_ptr<ReflectionProbes> probes_;
+    bool probesBorrowed_ = false;
     // Feature state shared by the passes of one feature folder.
     std::shared_ptr<ShadowMaps> shadowMaps_;
     std::shared_ptr<AmbientOcclusion> ambientOcclusion_;
@@ -170,6 +186,7 @@ private:
     bool editPassesOfThisFrame_ = false;   // editPasses_ already holds on-demand passes of the current frame
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
+    std::function<void(const std::string&)> prepareListener_;
     uint32_t frameIndex_ = 0;
 };
 

@@ -50,14 +50,14 @@ void SplitView::dragDivider(ui::Input& input, bool leftPressed, bool pointerOver
     }
 }
 
-std::optional<std::string> SplitView::render(const Renderer& left, const FrameDriver& frames,
+std::optional<std::string> SplitView::render(Renderer& left, const FrameDriver& frames,
                                              WindowResolution& resolution, GLuint target, const Scene& scene,
                                              const GpuScene& gpuScene, const Camera& camera, int width, int height) {
     RenderSettings settings = left.settings();
     settings.method = rightMethod(left.settings().method);
     try {
         if (!renderer_) {
-            renderer_ = std::make_unique<Renderer>(left.shaderRoot(), settings);
+            renderer_ = std::make_unique<Renderer>(left.shaderRoot(), settings, left);   // left's probes, environment
             renderer_->setAsyncGpuTimers(true);
         }
         renderer_->setSettings(settings);

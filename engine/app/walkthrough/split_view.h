@@ -32,9 +32,10 @@ public:
     void dragDivider(ui::Input& input, bool leftPressed, bool pointerOverUi, int width);
 
     // Renders the right part (`left`'s settings with the other method) and presents it over the columns right of the
-    // divider in `target`, then draws a 2-pixel divider line. Costs a second frame. A method that fails to build
+    // divider in `target`, then draws a 2-pixel divider line. Costs a second frame, not a second precomputation: the
+    // right renderer reads `left`'s environment and reflection probes (left renders first). A method that fails to build
     // turns the split off and returns the error.
-    std::optional<std::string> render(const Renderer& left, const FrameDriver& frames, WindowResolution& resolution,
+    std::optional<std::string> render(Renderer& left, const FrameDriver& frames, WindowResolution& resolution,
                                       GLuint target, const Scene& scene, const GpuScene& gpuScene,
                                       const Camera& camera, int width, int height);
     // Method names on both sides of the divider, at the top.

@@ -13,6 +13,7 @@
 #include "app/walkthrough/camera_motion.h"
 #include "app/walkthrough/frame_driver.h"
 #include "app/walkthrough/input.h"
+#include "app/walkthrough/loading_screen.h"
 #include "app/walkthrough/method_files.h"
 #include "app/walkthrough/overlay.h"
 #include "app/walkthrough/present.h"
@@ -46,19 +47,23 @@ public:
           split_(options.splitMethod, options.splitPosition) {
         const Camera& start = baseScene_.camera(options.request.camera);
         if (options.request.environment) baseScene_.environment = *options.request.environment;
+        std::filesystem::path shaderRoot =
+            options.request.shaderRoot.empty() ? defaultShaderDir() : options.request.shaderRoot;
+        // The loading frame first (the UI renderer's one program), then every slow step behind it.
+        loading_ = std::make_unique<LoadingScreen>(window_, baseScene_.name);   // the window opened just now
+        uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);
+        loading_->show(LoadingScreen::Shaders, *uiRenderer_);
         scene_ = baseScene_;
         applySceneOverrides(options.request.settings, scene_);
         gpuScene_ = std::make_unique<GpuScene>(scene_);
-        std::filesystem::path shaderRoot =
-            options.request.shaderRoot.empty() ? defaultShaderDir() : options.request.shaderRoot;
         std::string rendererName = window_.rendererString();
         softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
                             rendererName.find("softpipe") != std::string::npos;
         renderer_ = std::make_unique<Renderer>(
             shaderRoot, windowRenderSettings(options.request.settings, softwareRenderer_, options.screenshot.has_value()));
         renderer_->setAsyncGpuTimers(true);
-        uiRenderer_ = std::make_unique<ui::UiRenderer>(shaderRoot);
         methodFiles_ = std::make_unique<MethodFiles>(*this, controls_, shaderRoot, options.frameLimit == 0);
+        loading_->show(LoadingScreen::Collision, *uiRenderer_);
         startScene(start);
         input_ = std::make_unique<WindowInput>(window_, controls_, camera_, *this, options.inputScript);
         controls_.moveSpeed = camera_.preferredMode() == ui::MoveMode::Walk
@@ -79,6 +84,7 @@ public:
     }
 
     int run() {
+        prepareBehindLoadingFrame();
         // One clock for frames, key holds and the input script: seconds since the first frame began.
         double start = glfwGetTime();
         double previous = 0.0;
@@ -109,6 +115,7 @@ public:
             drawFrame(width, height);
             if (options_.screenshot && frame + 1 == options_.frameLimit) writeScreenshot(*options_.screenshot);
             window_.swapBuffers();
+            if (!loading_->finished()) finishLoading();
             if (input_->scriptQuit()) window_.requestClose();  // after a pending screenshot
             input_->startScriptClock(glfwGetTime() - start);
         }
@@ -117,6 +124,20 @@ public:
     }
 
 private:
+    // The environment before the first frame, and the frame's on-demand work (probes, glint data, the sky bake) in
+    // it, each step named on the loading frame.
+    void prepareBehindLoadingFrame() {
+        loading_->show(LoadingScreen::Environment, *uiRenderer_);
+        renderer_->prepareEnvironment(scene_);
+        renderer_->setPrepareListener([this](const std::string& pass) {
+            if (auto step = LoadingScreen::stepOfPass(pass)) loading_->show(*step, *uiRenderer_);
+        });
+    }
+    void finishLoading() {
+        renderer_->setPrepareListener({});
+        loading_->finish();
+    }
+
     void printStats() const {
         nlohmann::json stats = resolution_->statsJson();
         stats["scene"] = baseScene_.name;
@@ -354,6 +375,7 @@ private:
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<ui::UiRenderer> uiRenderer_;
+    std::unique_ptr<LoadingScreen> loading_;
     std::unique_ptr<MethodFiles> methodFiles_;
     std::unique_ptr<WindowInput> input_;
     std::unique_ptr<WindowResolution> resolution_;

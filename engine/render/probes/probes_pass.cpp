@@ -2,14 +2,15 @@
 
 namespace glimmer {
 
-ProbesPass::ProbesPass(const std::filesystem::path& shaderRoot) : probes_(shaderRoot) {}
+ProbesPass::ProbesPass(std::shared_ptr<ReflectionProbes> probes, bool updates)
+    : probes_(std::move(probes)), updates_(updates) {}
 
 void ProbesPass::prepare(PrepareContext& context) {
     const IblMode& ibl = findIblMode(context.settings.ibl);
     const bool active =
         ibl.readsProbes && context.environment.enabled() && probeSettings(context.settings).enabled;
-    if (active) {
-        ReflectionProbes::Update update = probes_.update(context.scene, context.gpuScene, context.environment,
+    if (active && updates_) {
+        ReflectionProbes::Update update = probes_->update(context.scene, context.gpuScene, context.environment,
                                                          context.settings);
         if (update.fromDisk) {
             context.recordOnDemand("probes.load", update.loadMs);
@@ -18,7 +19,7 @@ void ProbesPass::prepare(PrepareContext& context) {
             context.recordOnDemand("probes.prefilter", update.prefilterMs);
         }
     }
-    context.resources.publish(FrameResource::ReflectionProbes, probes_.image(active));
+    context.resources.publish(FrameResource::ReflectionProbes, probes_->image(active));
 }
 
 }  // namespace glimmer

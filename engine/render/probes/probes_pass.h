@@ -13,17 +13,19 @@ namespace glimmer {
 
 class ProbesPass : public Pass {
 public:
-    explicit ProbesPass(const std::filesystem::path& shaderRoot);
+    // `updates` false: another renderer captures `probes` (a second view of its scene); this pass only publishes them.
+    ProbesPass(std::shared_ptr<ReflectionProbes> probes, bool updates);
     const char* name() const override { return "probes"; }
     PassResources resources() const override { return {.writes = {FrameResource::ReflectionProbes}}; }
     std::vector<gl::Program*> programs() override { return {}; }
     void prepare(PrepareContext& context) override;
     bool runs(const FrameContext&) const override { return false; }
     void execute(const FrameContext&) override {}
-    const ReflectionProbes& probes() const { return probes_; }
+    const ReflectionProbes& probes() const { return *probes_; }
 
 private:
-    ReflectionProbes probes_;
+    std::shared_ptr<ReflectionProbes> probes_;
+    bool updates_;
 };
 
 }  // namespace glimmer

@@ -83,6 +83,13 @@ ReflectionProbes::ReflectionProbes(std::filesystem::path shaderRoot) : shaderRoo
 
 ReflectionProbes::~ReflectionProbes() = default;
 
+void ReflectionProbes::invalidate() {
+    captured_ = false;
+    shaderHash_.clear();
+    renderer_.reset();
+    prefilter_.reset();
+}
+
 ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuScene& gpuScene,
                                                   Environment& environment, const RenderSettings& settings) {
     ProbeSettings ps = probeSettings(settings);
@@ -381,7 +388,7 @@ void ReflectionProbes::storeToDisk(const std::string& key) const {
     const std::string name = "probes_" + cache::contentHash(key) + ".bin";
     if (dir.store(name, {"reflection-probes", kProbeCacheLayout, key},
                   {reinterpret_cast<const char*>(payload.data()), payload.size() * sizeof(float)}))
-        dir.pruneLeastRecentlyUsed("probes_", ".bin", kMaxCacheFiles);
+        dir.pruneLeastRecentlyUsed("probes_", ".bin", cache::keptFilesPerKind(kMaxCacheFiles));
 }
 
 FrameImage ReflectionProbes::image(bool active) const {

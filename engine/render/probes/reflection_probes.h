@@ -90,6 +90,9 @@ public:
     // environment must be prepared for `scene`. Leaves the frame uniform blocks bound to its own buffers.
     Update update(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
                   const RenderSettings& settings);
+    // The next update() captures (or reads the disk cache) again, with a new capture renderer and shader digest:
+    // what a fresh ReflectionProbes would do. Called when the renderer rebuilt its programs.
+    void invalidate();
     // FrameResource::ReflectionProbes: the probe array and block; `active` false gives a block with no probes (the
     // lighting reads the distant environment alone).
     FrameImage image(bool active) const;
