@@ -124,6 +124,22 @@ Light rectLight() {
     l.color = {1.0f, 0.9f, 0.8f};
     return l;
 }
+// A one-sided rect standing on the plane, facing +z, its lower edge 5 cm below the plane, with a range of 2.5 m:
+// the plane behind it, beyond its range and under its lower strip gets nothing of it (the lighting pass skips the
+// light there: lights/area_light.glsl areaLightReaches), the rest the part above the horizon.
+Light standingRectLight() {
+    Light l;
+    l.type = LightType::Rect;
+    l.vector = {0.2f, 0.3f, -0.5f};
+    l.spotDirection = {0.0f, 0.0f, 1.0f};
+    l.right = {1.0f, 0.0f, 0.0f};
+    l.width = 1.2f;
+    l.height = 0.7f;
+    l.range = 2.5f;
+    l.intensity = 3.0f;
+    l.color = {1.0f, 0.9f, 0.8f};
+    return l;
+}
 Light sphereLight() {
     Light l;
     l.type = LightType::Sphere;
@@ -150,7 +166,8 @@ double referenceRadiance(const Light& light, const glm::dvec3& p, const glm::dve
     reference::LtcLookup look = reference::ltcLookup(alpha, glm::dot(n, toEye), beckmann);
     double diffuse = reference::ltcIntegral(g, p, frame, glm::dmat3(1.0));
     double specular = (0.04 * look.A + look.B) * reference::ltcIntegral(g, p, frame, look.invSpecular);
-    return double(light.color[channel]) * light.radianceScale() * (0.5 * diffuse + specular);
+    const double window = rangeWindow(float(glm::distance(p, glm::dvec3(light.vector))), light.range);
+    return double(light.color[channel]) * light.radianceScale() * window * (0.5 * diffuse + specular);
 }
 
 TEST(AreaLights, RenderMatchesTheCpuLtcReference) {
@@ -162,6 +179,7 @@ TEST(AreaLights, RenderMatchesTheCpuLtcReference) {
     // The disk's shader path is the sphere's (an ellipse's cone); the CPU tests cover the disk against brute force.
     const Case cases[] = {{"rect GGX", rectLight(), NdfType::Ggx},
                           {"rect Beckmann", rectLight(), NdfType::Beckmann},
+                          {"standing rect GGX", standingRectLight(), NdfType::Ggx},
                           {"sphere GGX", sphereLight(), NdfType::Ggx}};
     for (const Case& c : cases) {
         const float alpha = 0.25f;
@@ -192,7 +210,8 @@ TEST(AreaLights, RenderMatchesTheCpuLtcReference) {
                         double F = 0.04 + 0.96 * std::pow(1.0 - glm::dot(vs, h), 5.0);
                         return 0.5 / kPi * nl + F * lf::lobeValue(c.ndf == NdfType::Beckmann ? lf::Ndf::Beckmann : lf::Ndf::Ggx,
                                                                   lf::Lobe::Specular, alpha, vs, ls);
-                    }, 48) * double(c.light.color[0]) * c.light.radianceScale();
+                    }, 48) * double(c.light.color[0]) * c.light.radianceScale() *
+                        rangeWindow(float(glm::distance(p, glm::dvec3(c.light.vector))), c.light.range);
                     sumTruth += truth;
                     sumError += std::abs(got - truth);
                 }

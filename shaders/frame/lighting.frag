@@ -373,47 +373,72 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
     if (areaLightCount > 0 && wo.z > 0.0) {
         LtcPixel ltc = ltcSetup(s.n, toEye, s.alpha, s.ndf);   // once per pixel, shared by the area lights
         vec3 specularAlbedo = f0 * ltc.splitSum.x + ltc.splitSum.y;
-        for (int i = lightCount - areaLightCount; i < lightCount; ++i) {
-            AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
-            if (!g.visible) continue;
+        int firstArea = lightCount - areaLightCount;
 #ifdef SHADOWS
-            float visibility = maskedLightVisibility(i, maskVisibility);
+        if (firstArea == 0) sum.firstLightVisibility = maskedLightVisibility(0, maskVisibility);
 #else
-            float visibility = 1.0;
+        if (firstArea == 0) sum.firstLightVisibility = 1.0;
 #endif
-            if (i == 0) sum.firstLightVisibility = visibility;
-            if (visibility <= 0.0) continue;
-            vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
-            // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of the
-            // integrals in the program; ltcLoopCount keeps the compiler from unrolling it).
-            float integrals[2];
-            for (int k = 0; k < ltcLoopCount(2); ++k)
-                integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV, k == 0 ? mat3(1.0) : ltc.invSpecular);
-            // Spheres: the cap's exact form factor (the disk of their silhouette gives the same, less exactly).
-            float diffuse = g.sinSigma2 > 0.0 ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : integrals[0];
-            float specularIntegral = integrals[1];
-            vec3 specular = specularAlbedo * specularIntegral;
-            if (p.glinty && specularIntegral > 0.0) {
-                // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
-                // angular cell of deliot2023's grid and the NDF value of the fallback.
-                vec3 wi = worldToShading * g.towardCentre;
-                vec3 h = normalize(vec3(wi.xy, max(wi.z, 1e-4)) + wo);
-                g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral, g.shape,
-                                          g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
-                specular *= areaGlintFactor(glint, s, h, wi, wo);
-#ifdef GLINT_METHOD_TARGETS
-                // The method keeps its light glints in its own target (its passes add them later).
-                if (glintTakeLightGlint(specular * L)) specular = vec3(0.0);
-#else
-                sum.glintPart += specular * L;
+        vec3 coatN = coated ? coat.n : s.n;
+        // The lights that reach this pixel, 32 to a word: in range, facing it, above its horizon (or its coat's) and
+        // not wholly shadowed (areaLightReaches). The loop below runs over the set bits only: llvmpipe executes
+        // every light of a branchy loop under a mask, but a loop ends when no pixel of the SIMD group has work
+        // left, so a light that none of the group's pixels sees costs only this test, not its integrals.
+        for (int word = firstArea; word < lightCount; word += 32) {
+            uint todo = 0u;
+            for (int i = word; i < min(word + 32, lightCount); ++i) {
+                bool reaches = areaLightReaches(u_lights[i], p.position, s.n, coatN);
+#ifdef SHADOWS
+                reaches = reaches && maskedLightVisibility(i, maskVisibility) > 0.0;
 #endif
+                if (reaches) todo |= 1u << uint(i - word);
             }
-            radiance += (diffuseAlbedo * diffuse + specular) * L;
-            if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
-                // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
-                vec3 towardLight, irradiance;
-                lightIncidence(u_lights[i], p.position, towardLight, irradiance);
-                coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
+            while (todo != 0u) {
+                int bit = findLSB(todo);
+                todo &= todo - 1u;
+                int i = word + bit;
+                AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
+#ifdef SHADOWS
+                float visibility = maskedLightVisibility(i, maskVisibility);
+#else
+                float visibility = 1.0;
+#endif
+                vec3 L = u_lights[i].colorIntensity.rgb * (u_lights[i].colorIntensity.a * g.window * visibility);
+                // The diffuse form factor (M = identity) and the specular LTC's integral, in one loop (one copy of
+                // the integrals in the program; ltcLoopCount keeps the compiler from unrolling it). Spheres take
+                // the cap's exact form factor instead (the disk of their silhouette gives the same, less exactly),
+                // so their loop starts at the specular integral.
+                bool sphere = g.sinSigma2 > 0.0;
+                float integrals[2];
+                integrals[0] = sphere ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : 0.0;
+                for (int k = sphere ? 1 : 0; k < ltcLoopCount(2); ++k)
+                    integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV,
+                                                   k == 0 ? mat3(1.0) : ltc.invSpecular);
+                float diffuse = integrals[0];
+                float specularIntegral = integrals[1];
+                vec3 specular = specularAlbedo * specularIntegral;
+                if (p.glinty && specularIntegral > 0.0) {
+                    // The light's representative direction is its centre's (Kneiphof & Klein's demo): it picks the
+                    // angular cell of deliot2023's grid and the NDF value of the fallback.
+                    vec3 wi = worldToShading * g.towardCentre;
+                    vec3 h = normalize(vec3(wi.xy, max(wi.z, 1e-4)) + wo);
+                    g_glintLight = GlintLight(true, g.solidAngle, ltc.ndfOnly * specularIntegral, specularIntegral,
+                                              g.shape, g.centre, g.halfU, g.halfV, ltc.invNdfOnly, ltc.ndfOnly);
+                    specular *= areaGlintFactor(glint, s, h, wi, wo);
+#ifdef GLINT_METHOD_TARGETS
+                    // The method keeps its light glints in its own target (its passes add them later).
+                    if (glintTakeLightGlint(specular * L)) specular = vec3(0.0);
+#else
+                    sum.glintPart += specular * L;
+#endif
+                }
+                radiance += (diffuseAlbedo * diffuse + specular) * L;
+                if (coated && coat.nDotV > 0.0 && dot(coat.n, g.towardCentre) > 0.0) {
+                    // The coat's lobe sees the light as a point of its intensity at the centre (lightIncidence).
+                    vec3 towardLight, irradiance;
+                    lightIncidence(u_lights[i], p.position, towardLight, irradiance);
+                    coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
+                }
             }
         }
     }

@@ -64,6 +64,25 @@ AreaLightGeometry areaLightGeometry(GpuLight light, vec3 position, mat3 toFrame)
     return g;
 }
 
+// False when the light adds nothing at `position` (normal n; `coatN` a clear coat's normal, n when uncoated): beyond
+// its range, a one-sided light seen from behind, or wholly below both horizons (every point of a rect below the
+// tangent plane: dot(c, n) + |U.n| + |V.n| <= 0; of a disk: dot(c, n) + sqrt((U.n)^2 + (V.n)^2) <= 0; of a sphere:
+// dot(c, n) + r <= 0). Both LTC integrals clip at the horizon, so such a light's diffuse and specular are exactly 0.
+// Cheap enough to run for every light before the loop that pays for the integrals (lighting.frag).
+bool areaLightReaches(GpuLight light, vec3 position, vec3 n, vec3 coatN) {
+    vec3 c = light.vectorType.xyz - position;
+    float range = light.spotOffsetRange.y;
+    if (range > 0.0 && dot(c, c) >= range * range) return false;
+    int type = int(light.vectorType.w + 0.5);
+    vec3 U = light.areaU.xyz, V = light.areaV.xyz;
+    if (type == LIGHT_SPHERE) return max(dot(c, n), dot(c, coatN)) + light.areaV.w > 0.0;
+    if (!(light.areaU.w > 0.5 || dot(c, cross(U, V)) < 0.0)) return false;
+    vec2 un = vec2(dot(U, n), dot(U, coatN)), vn = vec2(dot(V, n), dot(V, coatN));
+    vec2 reach = type == LIGHT_RECT ? abs(un) + abs(vn) : sqrt(un * un + vn * vn);
+    vec2 top = vec2(dot(c, n), dot(c, coatN)) + reach;
+    return max(top.x, top.y) > 0.0;
+}
+
 // The clamped cosine's integral over the light mapped by invM (Heitz et al. 2016, Eq. 7): the LTC of invM
 // integrated over the light. invM = identity: the diffuse form factor.
 float ltcAreaIntegral(int shape, vec3 centre, vec3 halfU, vec3 halfV, mat3 invM) {

@@ -26,6 +26,10 @@
 // Per pixel (glintSetup): the footprint, the two levels, their ellipses and row ranges, the shape (sigma, rho).
 // Per light (glintD): the slope in the target's whitened space, once; then the cells of both levels (each: one
 // hash, one rotation, two dictionary lookups).
+// Extended lights (shaders/glints/README.md, "Extended lights"): the papers' lights are points. The light's size
+// (g_glintLight) is not read: point, spot and directional lights are evaluated at their direction, and an area light
+// takes the lighting pass's fallback, glintD at its centre's half vector over D_smooth there times its smooth LTC
+// specular (no GLINT_AREA_LIGHTS).
 #include "glints/chermain2020/chermain2020_dictionary.glsl"
 
 const int CHERMAIN_MAX_CELLS_PER_LEVEL = 128;   // guard (authors: 100 iterations of the bounding box)
