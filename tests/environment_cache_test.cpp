@@ -33,10 +33,14 @@ protected:
         if (const char* old = std::getenv("GLIMMER_CACHE_DIR")) saved_ = old;
         setenv("GLIMMER_CACHE_DIR", (dir_ / "cache").c_str(), 1);
         unsetenv("GLIMMER_ENV_CACHE");
+        // A coarser prefilter quadrature (3.5x faster): these tests judge the cache, not the maps' accuracy
+        // (tests/environment_test.cpp does, at the default), and build about ten environments.
+        setenv("GLIMMER_ENV_PREFILTER_REFINE", "2", 1);
         context_ = createHeadlessContext(Backend::Egl);
     }
     void TearDown() override {
         context_.reset();
+        unsetenv("GLIMMER_ENV_PREFILTER_REFINE");
         if (saved_.empty()) unsetenv("GLIMMER_CACHE_DIR");
         else setenv("GLIMMER_CACHE_DIR", saved_.c_str(), 1);
     }
@@ -191,6 +195,15 @@ TEST_F(EnvironmentCacheTest, EditedShaderOrDisabledCacheIsNotRead) {
         EXPECT_FALSE(env.timings().cacheHit);
     }
     EXPECT_EQ(cacheFiles().size(), 2u);
+    // Another prefilter quadrature is another key.
+    setenv("GLIMMER_ENV_PREFILTER_REFINE", "3", 1);
+    {
+        Environment env(defaultShaderDir());
+        env.update(map.string(), SunDescription{}, "--env");
+        EXPECT_FALSE(env.timings().cacheHit);
+    }
+    setenv("GLIMMER_ENV_PREFILTER_REFINE", "2", 1);
+    EXPECT_EQ(cacheFiles().size(), 3u);
     setenv("GLIMMER_ENV_CACHE", "0", 1);
     Environment env(defaultShaderDir());
     env.update(map.string(), SunDescription{}, "--env");

@@ -185,10 +185,19 @@ TEST(ReflectionProbes, NotRecapturedWhenNothingChanged) {
     rig.render({}, true);
     EXPECT_EQ(updates(), 1);
     EXPECT_FALSE(ran("probes.capture") || ran("probes.load"));
+    // Settings a capture does not read (image pipeline, passes a capture turns off) keep the probes...
+    rig.render({"exposure=2", "tonemap=agx", "aa=taa", "bloom.strength=0.5", "shadow.filter_radius=3", "ao.radius=2"},
+               true);
+    EXPECT_EQ(updates(), 1) << "a setting the capture never reads re-captured the probes";
+    // ...one it reads does not.
+    rig.render({"material.alpha=0.2"}, true);
+    EXPECT_EQ(updates(), 2) << "a material change kept stale probes";
+    rig.render({}, true);
+    EXPECT_EQ(updates(), 3);
     // A moved wall is a change: captured (or read) again.
     rig.scene.instances[1].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0));
     rig.render({}, true);
-    EXPECT_EQ(updates(), 2);
+    EXPECT_EQ(updates(), 4);
     EXPECT_TRUE(ran("probes.capture") || ran("probes.load"));
 }
 

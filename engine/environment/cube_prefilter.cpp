@@ -1,8 +1,11 @@
 #include "environment/cube_prefilter.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 
 #include "common/bindings.glsl"
+#include "core/log.h"
 
 namespace glimmer {
 
@@ -31,6 +34,19 @@ CubePrefilter::CubePrefilter(const std::filesystem::path& shaderRoot)
       program4_(shaderRoot, {"env/prefilter", {{GL_COMPUTE_SHADER, "environment/prefilter.comp"}}, {"LOBE_ALPHAS 4"}}),
       resampleProgram_(shaderRoot, {"env/resample_cube", {{GL_COMPUTE_SHADER, "environment/resample_cube.comp"}}}),
       sumsProgram_(shaderRoot, {"env/radiance_centroid", {{GL_COMPUTE_SHADER, "environment/radiance_centroid.comp"}}}) {}
+
+float CubePrefilter::refine() {
+    const char* text = std::getenv("GLIMMER_ENV_PREFILTER_REFINE");
+    if (!text || !*text) return kRefine;
+    char* end = nullptr;
+    const float value = std::strtof(text, &end);
+    if (*end != '\0' || !(value >= 0.25f && value <= 8.0f)) {
+        log::warn("GLIMMER_ENV_PREFILTER_REFINE='", std::string(text).substr(0, 32),
+                  "' is not a number in [0.25, 8]; using ", kRefine);
+        return kRefine;
+    }
+    return value;
+}
 
 int CubePrefilter::rootMip(int faceSize) {
     int mip = 0;
@@ -128,7 +144,7 @@ void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& l
         glUniform1i(2, GLint(ndfMask & 3u));
         glUniform1i(3, rootMip(faceSize));
         glUniform1i(4, faceSize);
-        glUniform1f(5, kRefine);
+        glUniform1f(5, refine());
         glUniform4iv(6, 2, layerFaces);
         glUniform1f(8, kHorizonWidth);
         glUniform1i(9, count);

@@ -21,6 +21,9 @@ public:
     // A source texel is split while its width exceeds kRefine x max(its angle to the lobe's axis, the lobe's width
     // 2 alpha). Measured against CPU quadrature (tests/environment_test.cpp): see docs/environment.md.
     static constexpr float kRefine = 0.5f;
+    // kRefine, or GLIMMER_ENV_PREFILTER_REFINE in [0.25, 8] when set (larger: coarser and faster, ~3.5x at 2 for
+    // the environment; for tests of the caches, whose maps' accuracy is not what they judge). The caches key on it.
+    static float refine();
     // The mip of a faceSize cube whose texels are the walk's roots (4 x 4 per face, or level 0 if smaller).
     static int rootMip(int faceSize);
     static float levelAlpha(int level, int levels) {

@@ -265,7 +265,7 @@ std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunD
     std::snprintf(text, sizeof text,
                   " | face %d, rungs %d from alpha %g, %d a mip, prefilter quadrature refine %g roots mip %d, brdf "
                   "table %d x %d samples, irradiance face %d | shaders %s",
-                  kFaceSize, kRungs, double(kRungAlphaMin), kSublevels, double(CubePrefilter::kRefine),
+                  kFaceSize, kRungs, double(kRungAlphaMin), kSublevels, double(CubePrefilter::refine()),
                   CubePrefilter::rootMip(kFaceSize),
                   kBrdfLutSize, kBrdfLutSamples, kIrradianceFace,
                   cache::contentHash(shaders).c_str());
@@ -473,7 +473,7 @@ nlohmann::json Environment::stats() const {
         j["face_size"] = kFaceSize;
         j["prefilter_rungs"] = kRungs;
         j["prefilter_rung_alpha_min"] = kRungAlphaMin;
-        j["prefilter_refine"] = CubePrefilter::kRefine;
+        j["prefilter_refine"] = CubePrefilter::refine();
         j["brdf_lut_size"] = kBrdfLutSize;
         j["precompute_ms"] = {{"load", timings_.loadMs},           {"cubemap", timings_.convertMs},
                               {"mips", timings_.mipsMs},           {"prefilter", timings_.prefilterMs},

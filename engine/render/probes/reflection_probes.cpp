@@ -46,6 +46,30 @@ void setCubeSampling(GLuint texture) {
     glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
 }
 
+// The settings a capture renders with: the default method and IBL mode (whatever the frame uses), the frame's
+// common parameters (exposure, ambient, env.intensity / rotation, lod...), and nothing that needs this camera or
+// other frames: no probes (no probe sees another), no shadows (the maps are fitted to the main camera, not to a
+// probe's six faces, so a capture sees direct light unshadowed: docs/reflection_probes.md), no ambient occlusion,
+// no TAA and no image pipeline.
+RenderSettings captureSettings(const RenderSettings& frame) {
+    RenderSettings settings;
+    settings.common = frame.common;
+    for (const char* off : {"probes.enabled=0", "shadow.enabled=0", "ao.enabled=0", "aa=off", "lighting.split_glinty=0"})
+        settings.apply(off);
+    return settings;
+}
+
+// Common parameters a capture never reads: those of the passes captureSettings turns off, and those of the image
+// pipeline after the HDR image a capture reads back (exposure, tone curve, bloom, anti-aliasing). A change of one of
+// them re-captured all probes (seconds on a software renderer); exposure, TAA or a shadow filter changed in the
+// window or between tests now reuses them.
+bool captureIgnores(const std::string& name) {
+    for (const char* prefix : {"exposure", "tonemap", "bloom.", "aa", "ssaa.", "taa.", "shadow.", "ao.", "probes.",
+                               "lighting.split_glinty"})
+        if (name.rfind(prefix, 0) == 0) return true;
+    return false;
+}
+
 // Everything a capture depends on. Meshes are keyed by their sizes: a scene's meshes change only with the scene.
 void buildKey(const Scene& scene, const RenderSettings& settings, const ProbeSettings& probes,
               std::vector<float>& key, std::string& text) {
@@ -66,7 +90,9 @@ void buildKey(const Scene& scene, const RenderSettings& settings, const ProbeSet
         key.insert(key.end(), {float(int(l.type)), l.vector.x, l.vector.y, l.vector.z, l.color[0], l.color[1],
                                l.color[2], l.intensity});
     key.insert(key.end(), {scene.skyColor.x, scene.skyColor.y, scene.skyColor.z});
-    for (const CommonParam& p : commonParams()) key.push_back(settings.value({p.spec.name.c_str()}));
+    const RenderSettings capture = captureSettings(settings);
+    for (const CommonParam& p : commonParams())
+        if (!captureIgnores(p.spec.name)) key.push_back(capture.value({p.spec.name.c_str()}));
     std::ostringstream out;
     out << scene.name << '\n' << scene.environment << '\n' << scene.textures.size();
     text = out.str();
@@ -121,19 +147,6 @@ ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuS
               " ms, prefilter ", timings.prefilterMs, " ms");
     if (!disk.empty() && !probes_.empty()) storeToDisk(disk);
     return timings;
-}
-
-// The settings a capture renders with: the default method and IBL mode (whatever the frame uses), the frame's
-// common parameters (exposure, ambient, env.intensity / rotation, lod...), and nothing that needs this camera or
-// other frames: no probes (no probe sees another), no shadows (the maps are fitted to the main camera, not to a
-// probe's six faces, so a capture sees direct light unshadowed: docs/reflection_probes.md), no ambient occlusion,
-// no TAA and no image pipeline.
-static RenderSettings captureSettings(const RenderSettings& frame) {
-    RenderSettings settings;
-    settings.common = frame.common;
-    for (const char* off : {"probes.enabled=0", "shadow.enabled=0", "ao.enabled=0", "aa=off", "lighting.split_glinty=0"})
-        settings.apply(off);
-    return settings;
 }
 
 void ReflectionProbes::capture(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
