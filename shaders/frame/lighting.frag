@@ -385,17 +385,17 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
         // every light of a branchy loop under a mask, but a loop ends when no pixel of the SIMD group has work
         // left, so a light that none of the group's pixels sees costs only this test, not its integrals.
         for (int word = firstArea; word < lightCount; word += 32) {
-            uint todo = 0u;
+            uint pending = 0u;
             for (int i = word; i < min(word + 32, lightCount); ++i) {
                 bool reaches = areaLightReaches(u_lights[i], p.position, s.n, coatN);
 #ifdef SHADOWS
                 reaches = reaches && maskedLightVisibility(i, maskVisibility) > 0.0;
 #endif
-                if (reaches) todo |= 1u << uint(i - word);
+                if (reaches) pending |= 1u << uint(i - word);
             }
-            while (todo != 0u) {
-                int bit = findLSB(todo);
-                todo &= todo - 1u;
+            while (pending != 0u) {
+                int bit = findLSB(pending);
+                pending &= pending - 1u;
                 int i = word + bit;
                 AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
 #ifdef SHADOWS
