@@ -589,6 +589,51 @@ TEST(Wang2020Golden, TiltedViewAcrossThresholds) {
     }
 }
 
+// Sec. 4.4 directional occlusion on a plane that cannot occlude itself: plane25 under the procedural sky alone
+// (light.intensity 0, glinty, alpha 0.25). Every glinty pixel's mirror direction is visible (its target's alpha
+// 1), and every row keeps at least half the smooth method's radiance. The screen-space march read the depth of the
+// nearest texel, which at the far, grazing rows lies more than its 1 cm bias in front of the ray point: those
+// rows were all occluded and rendered black.
+TEST(Wang2020PostPass, APlaneDoesNotOccludeItsOwnReflection) {
+    useTestCache();
+    RenderRequest request;
+    request.scene = "plane25";
+    request.width = request.height = 128;
+    request.environment = "procedural";
+    request.settings.apply("light.intensity=0");
+    request.settings.apply("material.alpha=0.25");
+    request.settings.method = "smooth";
+    OffscreenSession session(request);
+    const RenderResult smooth = session.render(request);
+    RenderRequest wang = request;
+    wang.settings.method = "wang2020";
+    wang.settings.ibl = "wang2020";
+    const RenderResult glints = session.render(wang);
+    const std::vector<float> environment = session.renderer().readMethodTarget(0);
+    ASSERT_EQ(environment.size(), glints.hdr.size());
+    size_t glinty = 0, occluded = 0;
+    for (size_t p = 0; p < environment.size(); p += 4) {
+        if (glints.hdr[p + 3] <= 0.0f) continue;   // sky
+        ++glinty;
+        occluded += environment[p + 3] < 0.5f;
+    }
+    EXPECT_GT(glinty, environment.size() / 4 / 2);
+    EXPECT_EQ(occluded, 0u) << "of " << glinty << " plane pixels";
+    double worstRow = 1e9;
+    for (int y = 0; y < glints.height; ++y) {
+        double a = 0.0, b = 0.0;
+        for (int x = 0; x < glints.width; ++x) {
+            const size_t i = (size_t(y) * glints.width + x) * 4;
+            a += glints.hdr[i] + glints.hdr[i + 1] + glints.hdr[i + 2];
+            b += smooth.hdr[i] + smooth.hdr[i + 1] + smooth.hdr[i + 2];
+        }
+        if (b > 0.0) worstRow = std::min(worstRow, a / b);
+    }
+    std::printf("plane25 under the sky: %zu of %zu pixels occluded, darkest row at %.3f of smooth\n", occluded, glinty,
+                worstRow);
+    EXPECT_GT(worstRow, 0.5);
+}
+
 // Sec. 4.4 "Gaussian Blurring" through the real pipeline: the 9-tap occlusion blur and the 3-tap glint blur of the
 // post pass equal the CPU reference (glintpost::referencePostPass) applied to the lighting pass's glint targets,
 // pixel by pixel. heightmap25 under the constant environment with its light on: the bumps occlude the mirror

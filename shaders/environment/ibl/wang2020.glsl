@@ -49,10 +49,31 @@ vec4 wangGlintTable(vec3 nWorld, vec3 toEye) {
 // Directional occlusion (Sec. 4.4): visibility (0 or 1) of the environment along the mirror direction r of the view
 // about the normal, one ray as in the paper. In this rasterizer: a screen-space march in the depth buffer (16 steps,
 // geometrically spaced from 2 cm to 8 m; a step is blocked when the stored surface is nearer to the camera than
-// the ray point by less than 0.5 m, the assumed thickness). Off-screen or behind the camera: visible.
+// the ray point by less than 0.5 m, the assumed thickness, read at the ray point's exact screen position:
+// wangDepthAt). Off-screen or behind the camera: visible.
 // The 0/1 result goes to the alpha of the environment-glint target; the post pass blurs it with the paper's
 // 9-tap Gaussian into the soft-shadow weight delta (shaders/glints/wang2020/wang2020_glint_occlusion_blur.frag).
 layout(binding = UNIT_GBUFFER_DEPTH) uniform sampler2D u_wangDepth;   // the lighting pass's depth (reversed Z), unit 5
+
+// The stored depth at an exact screen position (pixels), interpolated between the four nearest texels. Reversed-Z
+// depth (near / view z) is affine across the image of a plane, so this is exact on flat surfaces; the nearest
+// texel's depth (its centre's) lies up to half a pixel footprint in front of or behind the ray point, which at
+// grazing views exceeds the 1 cm bias below: the far rows of plane25 occluded their own reflection and went black
+// under the sky. Where a texel is background (an edge) the nearest texel is used.
+float wangDepthAt(vec2 pixelPosition) {
+    // In the outer half pixel the weights leave [0, 1]: linear extrapolation from the last two texels, also exact.
+    vec2 f = pixelPosition - 0.5;
+    ivec2 last = ivec2(u_viewport.xy) - 1;
+    ivec2 i0 = clamp(ivec2(floor(f)), ivec2(0), max(last - 1, ivec2(0)));
+    vec2 w = f - vec2(i0);
+    float d00 = texelFetch(u_wangDepth, i0, 0).r;
+    float d10 = texelFetch(u_wangDepth, min(i0 + ivec2(1, 0), last), 0).r;
+    float d01 = texelFetch(u_wangDepth, min(i0 + ivec2(0, 1), last), 0).r;
+    float d11 = texelFetch(u_wangDepth, min(i0 + ivec2(1, 1), last), 0).r;
+    if (min(min(d00, d10), min(d01, d11)) <= 0.0)
+        return texelFetch(u_wangDepth, clamp(ivec2(pixelPosition), ivec2(0), last), 0).r;
+    return mix(mix(d00, d10, w.x), mix(d01, d11, w.x), w.y);
+}
 
 float wangDirectionalOcclusion(vec3 position, vec3 n, vec3 toEye) {
     vec3 dir = reflect(-toEye, n);
@@ -64,8 +85,7 @@ float wangDirectionalOcclusion(vec3 position, vec3 n, vec3 toEye) {
         if (clip.w <= 1e-4) return 1.0;
         vec3 ndc = clip.xyz / clip.w;
         if (any(greaterThan(abs(ndc.xy), vec2(1.0)))) return 1.0;
-        ivec2 pixel = ivec2((ndc.xy * 0.5 + 0.5) * vec2(u_viewport.xy));
-        float stored = texelFetch(u_wangDepth, pixel, 0).r;
+        float stored = wangDepthAt((ndc.xy * 0.5 + 0.5) * vec2(u_viewport.xy));
         if (stored <= 0.0) continue;                                 // background: nothing there
         vec4 q = u_inverseViewProjection * vec4(ndc.xy, stored, 1.0);
         float surfaceDistance = distance(q.xyz / q.w, u_cameraPosition.xyz);
