@@ -64,30 +64,29 @@ Kk25Tree kk25Tree(float p[8], int levels) {
     return tree;
 }
 
-// The counts of the levels (K = 4: c[0..3], K = 8: c[0..7]) of n facets, node k drawing with pair rnd[k]. One loop
-// over the nodes (its count is K's, unknown to the compiler): one copy of the split in the program, not seven.
+// One group of four levels {a b | c d}: node `top` splits it, then `left` {a | b} and `right` {c | d}.
+vec4 kk25Group(float n, Kk25Node top, Kk25Node left, Kk25Node right, vec2 rndTop, vec2 rndLeft, vec2 rndRight) {
+    float cd = kk25Split(n, top, rndTop.x, rndTop.y);
+    float ab = n - cd;
+    float b = kk25Split(ab, left, rndLeft.x, rndLeft.y);
+    float d = kk25Split(cd, right, rndRight.x, rndRight.y);
+    return vec4(ab - b, b, cd - d, d);
+}
+
+// The counts of the levels (K = 4: c[0..3], K = 8: c[0..7]) of n facets, node k drawing with pair rnd[k]. Written
+// with constant indices only: on a software rasterizer a local array indexed by a variable lives in memory, not in
+// registers, and an earlier loop over the nodes cost the lighting pass about a third more (docs/area_lights.md).
+// The second group runs only for K = 8 (the same branch for every pixel).
 void kk25Multinomial(float n, Kk25Tree tree, vec2 rnd[7], out float c[8]) {
-    for (int i = 0; i < 8; ++i) c[i] = 0.0;
-    float inputs[7];
-    for (int k = 0; k < 7; ++k) inputs[k] = 0.0;
-    inputs[6] = n;
-    inputs[0] = n;   // K = 4: group 0 holds every facet (node 6 does not run)
-    const int order[7] = int[7](6, 0, 1, 2, 3, 4, 5);
-    int first = tree.levels > 4 ? 0 : 1, last = tree.levels > 4 ? 7 : 4;
-    for (int k = first; k < last; ++k) {
-        int node = order[k];
-        float right = kk25Split(inputs[node], tree.node[node], rnd[node].x, rnd[node].y);
-        float left = inputs[node] - right;
-        if (node == 6) {
-            inputs[0] = left;
-            inputs[3] = right;
-        } else if (node % 3 == 0) {
-            inputs[node + 1] = left;
-            inputs[node + 2] = right;
-        } else {
-            int base = 4 * (node / 3) + 2 * (node % 3 - 1);
-            c[base] = left;
-            c[base + 1] = right;
-        }
+    float low = n, high = 0.0;
+    if (tree.levels > 4) {
+        high = kk25Split(n, tree.node[6], rnd[6].x, rnd[6].y);
+        low = n - high;
     }
+    vec4 lowCounts = kk25Group(low, tree.node[0], tree.node[1], tree.node[2], rnd[0], rnd[1], rnd[2]);
+    vec4 highCounts = vec4(0.0);
+    if (tree.levels > 4)
+        highCounts = kk25Group(high, tree.node[3], tree.node[4], tree.node[5], rnd[3], rnd[4], rnd[5]);
+    c = float[8](lowCounts.x, lowCounts.y, lowCounts.z, lowCounts.w, highCounts.x, highCounts.y, highCounts.z,
+                 highCounts.w);
 }
