@@ -37,6 +37,9 @@ WindowControls atriumControls() {
     window.cameraNames = {"entrance", "court", "objects", "grazing", "arcade", "gallery", "overview"};
     window.sceneNames = {"plane90", "plane25", "heightmap90", "heightmap25", "sphere", "atrium"};
     window.sceneIndex = 5;
+    // The Lights section's selector and a light's rows, with names as long as the atrium's.
+    window.lightNames = {"1 sun", "2 sphere -10.5,2.25,-3.75", "3 sphere 10.5,2.25,-3.75", "4 rect -12.5,3.6,0.125"};
+    window.lightIndex = 1;
     return window;
 }
 

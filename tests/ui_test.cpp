@@ -403,6 +403,43 @@ TEST(UiWindowKeys, SplitMethodCycleSkipsTheLeftMethod) {
     EXPECT_EQ(cycleGlintMethod(methods[0].id, -1).id, methods.back().id);
 }
 
+// Issue 37: the Lights section edits one light at a time: the selector picks it, its rows write light.<N>.<field>
+// (the --set keys), a right click removes the edit again.
+TEST(UiSettingsPanel, LightsSectionEditsTheSelectedLight) {
+    Context ui;
+    RenderSettings settings;
+    WindowControls window;
+    Light sun, rect;
+    rect.type = LightType::Rect;
+    rect.vector = {1.0f, 2.0f, 3.0f};
+    window.lightNames = lightSelectorNames({sun, rect});
+    ASSERT_EQ(window.lightNames.size(), 2u);
+    EXPECT_EQ(window.lightNames[0], "1 sun");
+    EXPECT_EQ(window.lightNames[1], "2 rect 1,2,3");
+    auto methods = fakeMethods();
+    ui.setOpenSection(kPanelId, commonGroupTitle("light"));
+    panelFrame(ui, {}, settings, window, methods);
+    ASSERT_TRUE(ui.widgetRect("light.1.intensity"));
+    EXPECT_FALSE(ui.widgetRect("light.2.intensity"));
+    Rect selector = *ui.widgetRect("edit light");
+    panelFrame(ui, clickAt(selector.at(0.95f, 0.5f)), settings, window, methods);
+    EXPECT_EQ(window.lightIndex, 1);
+    panelFrame(ui, {}, settings, window, methods);
+    for (const ParamSpec& spec : lightEditParams()) EXPECT_TRUE(ui.widgetRect(lightEditKey(2, spec.name))) << spec.name;
+    Rect size = *ui.widgetRect("light.2.size");
+    PanelResult r = panelFrame(ui, clickAt(size.at(0.75f, 0.5f)), settings, window, methods);
+    EXPECT_TRUE(r.settingsChanged);
+    ASSERT_TRUE(settings.common.count("light.2.size"));
+    EXPECT_GT(settings.common.at("light.2.size"), 1.0f);
+    EXPECT_FALSE(settings.common.count("light.1.size"));
+    Input right;
+    right.mouse = size.at(0.2f, 0.5f);
+    right.rightPressed = true;
+    r = panelFrame(ui, right, settings, window, methods);
+    EXPECT_TRUE(r.settingsChanged);
+    EXPECT_FALSE(settings.common.count("light.2.size"));
+}
+
 TEST(UiSettingsPanel, CommonParametersAndDebugViewAreEditable) {
     Context ui;
     RenderSettings settings;

@@ -130,6 +130,49 @@ const std::vector<CommonParam>& commonParams() {
     return params;
 }
 
+const std::vector<ParamSpec>& lightEditParams() {
+    static const std::vector<ParamSpec> params = {
+        {"on", 1.0f, 0.0f, 1.0f, "1 lights with this light, 0 switches it off", {}, true},
+        {"intensity", 1.0f, 0.01f, 100.0f, "multiplier on this light's intensity", {}, false, true},
+        {"size", 1.0f, 0.1f, 10.0f,
+         "scale of this light's size: rect width and height, disk and sphere radius, a punctual light's radius, "
+         "the sun's angular diameter",
+         {}, false, true},
+        {"turn", 0.0f, -180.0f, 180.0f,
+         "turns this light about the world's +y axis through its own centre, degrees: a directional light's "
+         "direction, a spot's axis, a rect's or disk's facing"},
+    };
+    return params;
+}
+
+std::string lightEditKey(int lightNumber, const std::string& field) {
+    return "light." + std::to_string(lightNumber) + "." + field;
+}
+
+int lightEditNumber(const std::string& key) {
+    if (key.rfind("light.", 0) != 0) return 0;
+    size_t end = key.find('.', 6);
+    if (end == std::string::npos || end == 6 || end - 6 > 2) return 0;
+    int number = 0;
+    for (size_t i = 6; i < end; ++i) {
+        if (key[i] < '0' || key[i] > '9') return 0;
+        number = number * 10 + (key[i] - '0');
+    }
+    return number;
+}
+
+static const ParamSpec* findLightEdit(const std::string& key) {
+    size_t dot = key.find('.', 6);
+    for (const ParamSpec& spec : lightEditParams())
+        if (key.compare(dot + 1, std::string::npos, spec.name) == 0) return &spec;
+    return nullptr;
+}
+
+void clearLightEdits(RenderSettings& settings) {
+    for (auto it = settings.common.begin(); it != settings.common.end();)
+        it = lightEditNumber(it->first) > 0 ? settings.common.erase(it) : std::next(it);
+}
+
 static const CommonParam* findCommon(const std::string& name) {
     for (const CommonParam& p : commonParams())
         if (p.spec.name == name) return &p;
@@ -170,6 +213,17 @@ void RenderSettings::apply(const std::string& assignment) {
         common[key] = parseParamValue(p->spec, value, "--set", key);
         return;
     }
+    if (int number = lightEditNumber(key); number > 0 || key.rfind("light.", 0) == 0) {
+        const ParamSpec* spec = number > 0 ? findLightEdit(key) : nullptr;
+        if (!spec || number > kMaxEditedLights) {
+            std::string fields;
+            for (const ParamSpec& s : lightEditParams()) fields += (fields.empty() ? "" : "|") + s.name;
+            throw UsageError("--set: unknown parameter '" + key + "' (a light's own edit is light.<1.." +
+                             std::to_string(kMaxEditedLights) + ">.<" + fields + ">; see glimmer render --list-params)");
+        }
+        common[key] = parseParamValue(*spec, value, "--set", key);
+        return;
+    }
     if (key.rfind("ibl.", 0) == 0) {
         const IblMode& mode = findIblMode(ibl);
         std::string name = key.substr(4);
@@ -197,6 +251,43 @@ void RenderSettings::apply(const std::string& assignment) {
         }
     throw UsageError("--set: unknown parameter '" + key + "' for method " + methodId +
                      " (see glimmer render --list-params)");
+}
+
+// Each light's own edits (lightEditParams), then the switched-off lights leave the scene.
+static void applyLightEdits(const RenderSettings& settings, Scene& scene) {
+    std::vector<bool> off(scene.lights.size(), false);
+    bool anyOff = false;
+    for (const auto& [key, value] : settings.common) {
+        int number = lightEditNumber(key);
+        if (number <= 0) continue;
+        if (size_t(number) > scene.lights.size())
+            throw UsageError("--set " + key + ": scene " + scene.name + " has " + std::to_string(scene.lights.size()) +
+                             " light" + (scene.lights.size() == 1 ? "" : "s"));
+        Light& light = scene.lights[size_t(number - 1)];
+        const std::string field = key.substr(key.find('.', 6) + 1);
+        if (field == "on") {
+            off[size_t(number - 1)] = value < 0.5f;
+            anyOff |= value < 0.5f;
+        } else if (field == "intensity") {
+            light.intensity *= value;
+        } else if (field == "size") {
+            light.width *= value;
+            light.height *= value;
+            light.radius *= value;
+            if (light.type == LightType::Directional) light.angularDiameter *= value;
+        } else if (field == "turn" && value != 0.0f) {
+            const float c = std::cos(glm::radians(value)), s = std::sin(glm::radians(value));
+            auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
+            if (light.type == LightType::Directional) light.vector = rotate(light.vector);
+            light.spotDirection = rotate(light.spotDirection);
+            light.right = rotate(light.right);
+        }
+    }
+    if (!anyOff) return;
+    std::vector<Light> kept;
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        if (!off[i]) kept.push_back(scene.lights[i]);
+    scene.lights = std::move(kept);
 }
 
 void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
@@ -230,6 +321,7 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
             light.radius *= areaSize;
         }
     }
+    applyLightEdits(settings, scene);   // after light.sun_diameter, which a light's own size then scales
     int wanted = int(settings.value(param::light_count));
     if (wanted > 0 && !scene.lights.empty()) {
         // Extra lights circle the first one's direction at the same elevation, so every light shades the view.
@@ -275,6 +367,9 @@ std::string describeParams() {
     };
     out << "Common parameters (--set KEY=VALUE):\n";
     for (const CommonParam& p : commonParams()) line(p.spec.name, p.spec, p.sceneDefault);
+    out << "\nOne light's own edits (--set light.<N>.<field>, N = 1.." << kMaxEditedLights
+        << ": the scene's lights in order, as the window's panel numbers them):\n";
+    for (const ParamSpec& spec : lightEditParams()) line("light.<N>." + spec.name, spec, false);
     for (const GlintMethod& m : glintMethods()) {
         out << "\nMethod " << m.id << (m.isUserMethod() ? " (user method, " + displayPath(m.sourceFile) + ")" : "") << ": "
             << m.title << " [" << m.citation << "]\n";

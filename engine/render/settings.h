@@ -107,7 +107,19 @@ struct RenderSettings {
     void apply(const std::string& assignment);
 };
 
-// Returns the scene with material and light overrides of `settings` applied.
+// One light's own edits (the panel's "edit light" rows; --set light.<N>.<field>, N counting the scene's lights
+// from 1 in scene order): kept in RenderSettings::common under those keys and applied by applySceneOverrides
+// before the all-lights parameters (light.intensity, light.area_*, light.count, light.turn).
+const std::vector<ParamSpec>& lightEditParams();
+constexpr int kMaxEditedLights = 64;
+std::string lightEditKey(int lightNumber, const std::string& field);
+// The light number of a "light.<N>.<field>" key (0 when the key is not one).
+int lightEditNumber(const std::string& key);
+// Removes every light's own edits (the window does when it loads another scene: the numbers name other lights).
+void clearLightEdits(RenderSettings& settings);
+
+// Returns the scene with material and light overrides of `settings` applied. A light edit naming a light the scene
+// lacks throws UsageError naming the key.
 void applySceneOverrides(const RenderSettings& settings, Scene& scene);
 
 // Text for `glimmer render --list-params`.

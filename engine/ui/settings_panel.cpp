@@ -57,13 +57,15 @@ std::string commonGroupTitle(const std::string& prefix) {
 // --set (or a scene file), not dragged; the panel then has room for the interactive ones at 1280x720.
 // The GTAO sampling and filter switches likewise (slices, steps, falloff, denoise, multi-bounce), and the shadow
 // maps' sizes and cache switch; the texture filtering cap, the geometry level of detail, the split lighting and
-// the TAA upsampling switch (per-machine choices the window sets for its renderer).
+// the TAA upsampling switch (per-machine choices the window sets for its renderer). The shadow biases are the
+// scene's (acne against peter-panning, tuned once per scene file): their rows made room for one light's own edits.
 bool panelHidesParameter(const std::string& name) {
     static const char* const names[] = {"ao.sky_cell", "ao.sky_rays", "ao.slices",      "ao.steps",
                                         "ao.falloff",  "ao.denoise",  "ao.multibounce", "ssaa.factor",
                                         "taa.glint_history", "taa.stable_glints", "shadow.map_size",
                                         "shadow.point_map_size", "shadow.cache", "texture_anisotropy",
-                                        "lod.pixel_error", "lighting.split_glinty", "taa.upsample"};
+                                        "lod.pixel_error", "lighting.split_glinty", "taa.upsample",
+                                        "shadow.bias", "shadow.normal_bias", "shadow.slope_bias"};
     for (const char* n : names)
         if (name == n) return true;
     return false;
@@ -92,6 +94,30 @@ std::string panelMethodTitle(const std::string& title, int uiScale) {
     if (float(textWidth(title, uiScale)) <= room) return title;
     size_t bracket = title.find(" (");
     return bracket == std::string::npos ? title : title.substr(0, bracket);
+}
+
+std::vector<std::string> lightSelectorNames(const std::vector<Light>& lights) {
+    std::vector<std::string> names;
+    for (size_t i = 0; i < lights.size() && i < size_t(kMaxEditedLights); ++i) {
+        const Light& l = lights[i];
+        const char* kind = "";
+        switch (l.type) {
+            case LightType::Directional: kind = "sun"; break;
+            case LightType::Point: kind = "point"; break;
+            case LightType::Spot: kind = "spot"; break;
+            case LightType::Rect: kind = "rect"; break;
+            case LightType::Disk: kind = "disk"; break;
+            case LightType::Sphere: kind = "sphere"; break;
+        }
+        char text[64];
+        if (l.type == LightType::Directional)
+            std::snprintf(text, sizeof text, "%zu %s", i + 1, kind);
+        else
+            std::snprintf(text, sizeof text, "%zu %s %.3g,%.3g,%.3g", i + 1, kind, double(l.vector.x),
+                          double(l.vector.y), double(l.vector.z));
+        names.push_back(text);
+    }
+    return names;
 }
 
 static std::string prefixOf(const std::string& name) {
@@ -201,6 +227,20 @@ PanelResult settingsPanel(Context& ui, RenderSettings& settings, WindowControls&
             if (ui.selector("debug view", views, viewIndex)) {
                 settings.debugView = aovTable()[size_t(viewIndex)].viewId;
                 result.settingsChanged = true;
+            }
+        }
+        if (group == "light" && !window.lightNames.empty()) {
+            // One light at a time: the selector picks it, its rows edit light.<N>.<field> (scene order, from 1).
+            window.lightIndex = std::clamp(window.lightIndex, 0, int(window.lightNames.size()) - 1);
+            ui.selector("edit light", window.lightNames, window.lightIndex);
+            for (const ParamSpec& spec : lightEditParams()) {
+                const std::string key = lightEditKey(window.lightIndex + 1, spec.name);
+                auto set = settings.common.find(key);
+                float value = set == settings.common.end() ? spec.defaultValue : set->second;
+                Edit edit = ui.slider(key, spec, value);
+                if (edit == Edit::Changed) settings.common[key] = value;
+                if (edit == Edit::Reset) settings.common.erase(key);
+                result.settingsChanged |= edit != Edit::None;
             }
         }
         for (const CommonParam& p : commonParams()) {

@@ -33,7 +33,14 @@ struct WindowControls {
     // scene's first glinty material, with the material overrides applied); none: they start from the default.
     // Without it one arrow press set log_density to default + 1 = 17 on every material and wiped the glints.
     std::optional<Material> mappedMaterial;
+    // The scene's lights as the "edit light" selector names them ("1 sun", "2 sphere", ...: lightNames), and the
+    // one whose own edits (lightEditParams, settings key light.<N>.<field>) the Lights section shows.
+    std::vector<std::string> lightNames;
+    int lightIndex = 0;
 };
+
+// The selector's names of a scene's lights: number (as in --set light.<N>.<field>), kind, and where it is.
+std::vector<std::string> lightSelectorNames(const std::vector<Light>& lights);
 
 struct PanelResult {
     bool settingsChanged = false;   // anything in RenderSettings (method, parameters, debug view)

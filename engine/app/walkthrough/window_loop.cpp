@@ -311,6 +311,8 @@ private:
             it = controls_.sceneNames.end() - 1;
         }
         controls_.sceneIndex = int(it - controls_.sceneNames.begin());
+        controls_.lightNames = ui::lightSelectorNames(baseScene_.lights);
+        controls_.lightIndex = 0;
     }
 
     // The panel's scene selector: loads the scene, its collision mesh and cameras; settings stay.
@@ -326,6 +328,10 @@ private:
         if (controls_.recording) camera_.toggleRecording(now_);
         baseScene_ = std::move(loaded);
         if (options_.request.environment) baseScene_.environment = *options_.request.environment;
+        // A light's own edits name the old scene's lights by number: they do not carry over.
+        RenderSettings withoutLightEdits = renderer_->settings();
+        clearLightEdits(withoutLightEdits);
+        if (withoutLightEdits.common != renderer_->settings().common) renderer_->setSettings(withoutLightEdits);
         scene_ = baseScene_;
         applySceneOverrides(renderer_->settings(), scene_);
         updateMappedMaterial();

@@ -88,7 +88,9 @@ void buildKey(const Scene& scene, const RenderSettings& settings, const ProbeSet
                                float(m.normalTexture)});
     for (const Light& l : scene.lights)
         key.insert(key.end(), {float(int(l.type)), l.vector.x, l.vector.y, l.vector.z, l.color[0], l.color[1],
-                               l.color[2], l.intensity});
+                               l.color[2], l.intensity, l.spotDirection.x, l.spotDirection.y, l.spotDirection.z,
+                               l.right.x, l.right.y, l.right.z, l.width, l.height, l.radius, l.angularDiameter,
+                               l.innerConeAngle, l.outerConeAngle, l.range, float(l.twoSided)});
     key.insert(key.end(), {scene.skyColor.x, scene.skyColor.y, scene.skyColor.z});
     const RenderSettings capture = captureSettings(settings);
     for (const CommonParam& p : commonParams())
