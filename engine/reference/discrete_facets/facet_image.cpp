@@ -100,6 +100,24 @@ ReferenceImage evaluateLights(const SurfaceImage& surface, const std::vector<Mat
                                         ? glm::normalize(glm::dvec3(light.vector))
                                         : glm::normalize(glm::dvec3(light.vector) - px.position);
                 glm::dvec3 wi = toShading(toward);
+                const bool extent = options.lightExtent >= (light.type == LightType::Directional ? 2 : 1);
+                const LightShape shape = extent ? lightShape(light) : LightShape{};
+                if (shape.kind != LightShape::None) {
+                    // A light of a size may reach the pixel with its centre below the horizon (the lighting pass
+                    // lifts that direction to 1e-4 for h).
+                    const glm::dvec3 h = glm::normalize(glm::dvec3(wi.x, wi.y, std::max(wi.z, 1e-4)) + wo);
+                    const uint64_t seed = FacetRealization::mix((uint64_t(p) << 8 | uint64_t(k)) * 0x9e3779b97f4a7c15ull +
+                                                                options.seed);
+                    ExtendedEstimate e = estimateOverLight(estimator, px.footprint, px.position, n, t, b,
+                                                           glm::normalize(surface.cameraPosition - px.position),
+                                                           shape, options.extended, seed);
+                    const double smooth = estimator.smoothD(h);
+                    image.d[p * size_t(image.lights) + size_t(k)] = glm::vec3(e.factor * smooth);
+                    image.smoothD[p * size_t(image.lights) + size_t(k)] = float(smooth);
+                    image.lambda[p * size_t(image.lights) + size_t(k)] = float(e.lambda);
+                    rowTested += e.facetsTested;
+                    continue;
+                }
                 if (wi.z <= 0.0) continue;
                 glm::dvec3 h = glm::normalize(wi + wo);
                 FacetEstimate e = estimator.estimate(px.footprint, h);

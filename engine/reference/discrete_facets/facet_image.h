@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/discrete_facets/extended_lights.h"
 #include "reference/discrete_facets/facet_estimator.h"
 #include "scene/scene.h"
 
@@ -40,6 +41,13 @@ struct ReferenceOptions {
     int maxLights = 8;        // lights beyond this many are not evaluated (their D stays 0)
     int threads = 0;          // 0 = every hardware thread
     bool progress = true;     // log::info every 10 % of the rows
+    // Lights of a size (extended_lights.h): each facet's lobe integrated over the light for area lights and point
+    // lights of a radius (1), also over the sun's disk (2), or the facets that reflect every light's centre
+    // direction counted as for a punctual light (0, the earlier reading). The sun's 0.53 degrees change the glint
+    // statistics by little against the facets' lobe (docs/discrete_facet_reference.md) and cost a lobe
+    // integration per facet on every measured plane, so 1 is the default.
+    int lightExtent = 1;
+    ExtendedLightOptions extended;
 };
 
 // The realization parameters of a scene material (density per unit UV = glint density x m^2 per unit UV x the
@@ -57,8 +65,10 @@ struct ReferenceImage {
     int threads = 1;
 };
 
-// D_est of every light at every pixel of `surface` whose material is glinty. `lights` in the scene's order;
-// directional lights use their direction, point and spot lights the direction to their position.
+// D_est of every light at every pixel of `surface` whose material is glinty, `lights` in the order given. Punctual
+// lights: at the half vector of their direction (directional) or of their position (point, spot). Lights of a size
+// with options.lightExtent: (N / M) x D(h_centre) (extended_lights.h), h_centre from the direction to their centre
+// lifted to 1e-4 above the horizon as the lighting pass does; smoothD holds D(h_centre).
 ReferenceImage evaluateLights(const SurfaceImage& surface, const std::vector<Material>& materials,
                               const std::vector<Light>& lights, const ReferenceOptions& options);
 

@@ -141,14 +141,15 @@ double FacetRealization::lobeRadius() const {
     return std::asin(std::min(1.0, reach * stretch));
 }
 
-FacetRegion FacetRealization::lobeRegion(const glm::dvec3& h) const {
+FacetRegion FacetRealization::lobeRegion(const glm::dvec3& h, double extraRadius) const {
     FacetRegion region;
-    const double radius = lobeRadius();
+    const double radius = lobeRadius() + std::max(extraRadius, 0.0);
+    if (radius >= kPi) return region;   // every normal (the default region's u1 and u2 ranges)
     const double theta = std::acos(std::clamp(h.z, -1.0, 1.0));
     const double margin = 1e-9;
     region.u1Min = std::max(0.0, polarUniform(theta - radius - margin) - 1e-12);
     region.u1Max = std::min(1.0, polarUniform(theta + radius + margin) + 1e-12);
-    if (theta <= radius + margin) {   // the lobe holds the pole: every azimuth
+    if (theta <= radius + margin || radius >= 0.5 * kPi) {   // the lobe holds the pole (or is that wide): every azimuth
         region.azimuthRanges = 1;
         region.u2Min[0] = 0.0;
         region.u2Max[0] = 1.0;

@@ -91,8 +91,9 @@ public:
     double polarUniform(double theta) const;
     // Half-width (radians) of a cone around h that contains the whole lobe of a facet reflecting h.
     double lobeRadius() const;
-    // The region of normals that can reflect h (shading frame), as u1 / u2 ranges; UV box left empty.
-    FacetRegion lobeRegion(const glm::dvec3& h) const;
+    // The region of normals that can reflect h (shading frame), as u1 / u2 ranges; UV box left empty. With
+    // extraRadius > 0: that can reflect any half vector within extraRadius (radians) of h (an extended light).
+    FacetRegion lobeRegion(const glm::dvec3& h, double extraRadius = 0.0) const;
 
     // Calls visit(const Facet&) for every facet of the realization inside `region` (exact; a facet on the
     // region's boundary is included). Facet colours are filled in. Thread-safe (no state changes).

@@ -125,7 +125,16 @@ GlintMethod referenceMethod() {
                          "environment: half vectors per facet inside its lobe (stratified Monte Carlo over the map)", {},
                          true},
                         {"env_samples", 64.0f, 1.0f, 4096.0f,
-                         "environment: samples of the smooth lobe subtracted (the IBL mode already shades it)", {}, true}}};
+                         "environment: samples of the smooth lobe subtracted (the IBL mode already shades it)", {}, true},
+                        {"light_extent", 1.0f, 0.0f, 2.0f,
+                         "lights of a size: integrate each facet's lobe over the light for area lights and point "
+                         "lights of a radius (area), also over the sun's disk (all), or count the facets at every "
+                         "light's centre direction (centre)",
+                         {"centre", "area", "all"}},
+                        {"light_facet_samples", 16.0f, 1.0f, 256.0f,
+                         "extent: half vectors per facet lobe tested against the light (stratified)", {}, true},
+                        {"light_samples", 1024.0f, 16.0f, 65536.0f,
+                         "extent: directions over the light for the smooth expectation (stratified)", {}, true}}};
     method.createResources = [] { return std::make_unique<ReferenceResources>(); };
     method.createPasses = [](const std::filesystem::path& root) {
         MethodPassList passes;
@@ -160,6 +169,9 @@ ReferenceOptions referenceOptions(const RenderSettings& settings) {
     options.filter = value("footprint") > 0.5f ? FootprintFilter::Gaussian : FootprintFilter::Box;
     options.seed = uint64_t(value("seed"));
     options.threads = int(value("threads"));
+    options.lightExtent = int(std::lround(value("light_extent")));
+    options.extended.facetSamples = int(value("light_facet_samples"));
+    options.extended.lightSamples = int(value("light_samples"));
     return options;
 }
 
@@ -216,7 +228,10 @@ RenderResult renderReference(OffscreenSession& session, const RenderRequest& req
     const ReferenceOptions options = referenceOptions(request.settings);
     SurfaceImage surface = captureSurface(session, request);
     const Scene& scene = session.scene();
-    ReferenceImage image = evaluateLights(surface, scene.materials, scene.lights, options);
+    // In the lighting pass's order (gpuLightOrder): the shader reads layer k for its light k.
+    std::vector<Light> lights;
+    for (size_t i : gpuLightOrder(scene.lights)) lights.push_back(scene.lights[i]);
+    ReferenceImage image = evaluateLights(surface, scene.materials, lights, options);
     log::info("reference: ", image.width, "x", image.height, ", ", image.lights, " light(s), ", image.threads,
               " thread(s): ", image.seconds, " s, ", image.facetsTested, " facets tested");
     // The environment (final image only): the facets' reflection of the map the renderer uses.

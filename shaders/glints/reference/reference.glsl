@@ -4,10 +4,11 @@
 // vector, and uploaded D_est = D(h) x (weighted count) / (density x P(h)), whose expectation is D(h) exactly
 // (facet_estimator.h). This file returns the value of the light being shaded, so the lighting pass applies
 // Fresnel, masking, shadows and irradiance to it like to any method's NDF.
-// Extended lights: the CPU counts the facets that reflect each light's centre direction (facet_image.cpp), so an
-// area light takes the lighting pass's fallback (that D_est over D_smooth, times the smooth LTC specular) and the
-// sun's and a point light's size are not read; integrating each facet's lobe over the light's solid angle is not
-// implemented (docs/area_lights.md, "Fidelity").
+// Lights of a size (area lights, point lights of a radius; the sun's disk with reference.light_extent=all): the CPU
+// integrates each facet's lobe over the light (engine/reference/discrete_facets/extended_lights.h) and uploads
+// D_est = (N / M) x D(h_centre), so the lighting pass's fallback for area lights (that value over D_smooth at the
+// centre, times the smooth LTC specular) multiplies the specular by the facets' glint factor N / M. Layer k is the
+// lighting pass's light k (gpuLightOrder).
 #define GLINT_COLOR_D 1   // per-facet colours (GlintMaterial color, colorVariation)
 
 // Layer k: light k's D_est per colour channel; a = 1 where the CPU evaluated the pixel.
