@@ -29,6 +29,9 @@ float kk25Split(float n, Kk25Node node, float u, float g) {
     if (!(n > 0.0) || q <= 0.0) return 0.0;
     if (q >= 1.0) return n;
     if (n < 2.0) return u < q ? n : 0.0;
+    // Many facets on both sides (n min(q, 1 - q) > 30): every gate below e^-30, so the conditional mean of the rest
+    // is n q to float precision and the gates' two exponentials are skipped (most splits of a dense footprint).
+    if (n * min(q, 1.0 - q) > 30.0) return clamp(n * q + sqrt(n * q * (1.0 - q)) * g, 2.0, n - 2.0);
     float allLeft = exp(n * node.logMiss), allRight = exp(n * node.logHit);
     float oneRight = n >= 3.0 ? n * q * allLeft / (1.0 - q) : 0.0;
     float oneLeft = n >= 3.0 ? n * (1.0 - q) * allRight / q : 0.0;
