@@ -126,21 +126,26 @@ ExtendedEstimate estimateOverLight(const FacetEstimator& estimator, const PixelF
     basisAround(axis, ax, ay);
     const double cosMax = std::cos(std::min(halfAngle, kPi));
     const double coneSolidAngle = 2.0 * kPi * (1.0 - cosMax);
+    // Calls visit(l in the shading frame) for each of side x side stratified directions of the cone that hit the
+    // light above the horizon.
+    auto forEachLightDirection = [&](int side, uint64_t bits, auto&& visit) {
+        for (int i = 0; i < side; ++i)
+            for (int j = 0; j < side; ++j) {
+                bits = FacetRealization::mix(bits);
+                const glm::dvec3 l = coneDirection(axis, ax, ay, cosMax, i, j, side, bits);
+                if (!light.hits(position, l)) continue;
+                const glm::dvec3 ls = toShading(l);
+                if (ls.z > 0.0) visit(ls);
+            }
+    };
     const int lightSide = gridSide(options.lightSamples);
     double expected = 0.0, facetsSeeing = 0.0;
-    uint64_t bits = FacetRealization::mix(seed ^ 0x3c6ef372fe94f82bull);
-    for (int i = 0; i < lightSide; ++i)
-        for (int j = 0; j < lightSide; ++j) {
-            bits = FacetRealization::mix(bits);
-            const glm::dvec3 l = coneDirection(axis, ax, ay, cosMax, i, j, lightSide, bits);
-            if (!light.hits(position, l)) continue;
-            const glm::dvec3 ls = toShading(l);
-            if (ls.z <= 0.0) continue;
-            const glm::dvec3 h = glm::normalize(ls + vs);
-            const double d = estimator.smoothD(h);
-            expected += d;
-            facetsSeeing += d * h.z / (4.0 * glm::dot(vs, h));
-        }
+    forEachLightDirection(lightSide, FacetRealization::mix(seed ^ 0x3c6ef372fe94f82bull), [&](const glm::dvec3& ls) {
+        const glm::dvec3 h = glm::normalize(ls + vs);
+        const double d = estimator.smoothD(h);
+        expected += d;
+        facetsSeeing += d * h.z / (4.0 * glm::dot(vs, h));
+    });
     const double perSample = coneSolidAngle / double(lightSide * lightSide);
     result.expected = expected * perSample;
     const FacetMaterial& material = estimator.material();
@@ -167,18 +172,11 @@ ExtendedEstimate estimateOverLight(const FacetEstimator& estimator, const PixelF
     if (coneSolidAngle <= reflectedSolidAngle) {
         glm::dvec3 reflected(0.0);
         long tested = 0;
-        uint64_t lightBits = FacetRealization::mix(seed ^ 0x7f4a7c159e3779b9ull);
-        for (int i = 0; i < facetSide; ++i)
-            for (int j = 0; j < facetSide; ++j) {
-                lightBits = FacetRealization::mix(lightBits);
-                const glm::dvec3 l = coneDirection(axis, ax, ay, cosMax, i, j, facetSide, lightBits);
-                if (!light.hits(position, l)) continue;
-                const glm::dvec3 ls = toShading(l);
-                if (ls.z <= 0.0) continue;
-                const FacetEstimate e = estimator.estimate(footprint, glm::normalize(ls + vs));
-                reflected += e.d;
-                tested += e.facetsTested;
-            }
+        forEachLightDirection(facetSide, FacetRealization::mix(seed ^ 0x7f4a7c159e3779b9ull), [&](const glm::dvec3& ls) {
+            const FacetEstimate e = estimator.estimate(footprint, glm::normalize(ls + vs));
+            reflected += e.d;
+            tested += e.facetsTested;
+        });
         result.factor = reflected * (coneSolidAngle / double(facetSide * facetSide)) / result.expected;
         result.facetsTested = tested;
         return result;
