@@ -253,6 +253,12 @@ void RenderSettings::apply(const std::string& assignment) {
                      " (see glimmer render --list-params)");
 }
 
+// v turned about the world's +y axis by `degrees` (light.turn and a light's own turn).
+static glm::vec3 turnedAboutY(glm::vec3 v, float degrees) {
+    const float c = std::cos(glm::radians(degrees)), s = std::sin(glm::radians(degrees));
+    return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
+}
+
 // Each light's own edits (lightEditParams), then the switched-off lights leave the scene.
 static void applyLightEdits(const RenderSettings& settings, Scene& scene) {
     std::vector<bool> off(scene.lights.size(), false);
@@ -276,11 +282,9 @@ static void applyLightEdits(const RenderSettings& settings, Scene& scene) {
             light.radius *= value;
             if (light.type == LightType::Directional) light.angularDiameter *= value;
         } else if (field == "turn" && value != 0.0f) {
-            const float c = std::cos(glm::radians(value)), s = std::sin(glm::radians(value));
-            auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
-            if (light.type == LightType::Directional) light.vector = rotate(light.vector);
-            light.spotDirection = rotate(light.spotDirection);
-            light.right = rotate(light.right);
+            if (light.type == LightType::Directional) light.vector = turnedAboutY(light.vector, value);
+            light.spotDirection = turnedAboutY(light.spotDirection, value);
+            light.right = turnedAboutY(light.right, value);
         }
     }
     if (!anyOff) return;
@@ -341,12 +345,10 @@ void applySceneOverrides(const RenderSettings& settings, Scene& scene) {
     if (float turn = settings.value(param::light_turn); turn != 0.0f) {
         // After light.count, so added lights turn with the first. Directions and positions alike (a point light
         // circles the y axis), so h moves the same way everywhere.
-        const float c = std::cos(glm::radians(turn)), s = std::sin(glm::radians(turn));
-        auto rotate = [&](glm::vec3 v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
         for (Light& light : scene.lights) {
-            light.vector = rotate(light.vector);
-            light.spotDirection = rotate(light.spotDirection);
-            light.right = rotate(light.right);   // an area light's width axis
+            light.vector = turnedAboutY(light.vector, turn);
+            light.spotDirection = turnedAboutY(light.spotDirection, turn);
+            light.right = turnedAboutY(light.right, turn);   // an area light's width axis
         }
     }
 }
