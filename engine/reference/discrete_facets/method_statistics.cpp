@@ -43,7 +43,10 @@ GlintFrame referenceGlintFrame(OffscreenSession& session, const SurfaceImage& su
     ReferenceOptions options = referenceOptions(request.settings);
     options.maxLights = 1;
     options.progress = false;
-    ReferenceImage image = evaluateLights(surface, session.scene().materials, session.scene().lights, options);
+    // The glint AOV is the lighting pass's first light: the first in gpuLightOrder.
+    std::vector<Light> lights;
+    for (size_t i : gpuLightOrder(session.scene().lights)) lights.push_back(session.scene().lights[i]);
+    ReferenceImage image = evaluateLights(surface, session.scene().materials, lights, options);
     f.d.assign(f.smooth.size(), 0.0f);
     f.lambda.assign(f.smooth.size(), 0.0f);
     f.inside = highlightMask(f.smooth);
