@@ -192,5 +192,46 @@ TEST(UpscaleWindow, AtHalfScaleShowsTheHalfSizeRenderUpscaledWithItsDerivatives)
     EXPECT_GE(double(near), 0.98 * double(compared));
 }
 
+// Issue 39: with lighting.glint_footprint=output a render pixel below scale 1 filters its glints over an output
+// pixel's footprint: in a window at scale 0.5 the duvdx the glint method reads (its AOV, at the render size) is the
+// render pixel's times 0.5, exactly, on every glinty pixel, where the default (render) leaves it alone; at scale 1
+// the setting changes nothing.
+TEST(UpscaleWindow, OutputGlintFootprintFiltersGlintsOverTheOutputPixel) {
+    if (test::runUnderXvfb("command -v xvfb-run > /dev/null") != 0) GTEST_SKIP() << "xvfb-run not installed";
+    std::string dir = test::makeTempDir("glint_footprint");
+    auto windowDuv = [&](const std::string& footprint) {
+        fs::path out = dir + "/duv_" + footprint + ".exr";
+        std::string command = std::string(GLIMMER_EXECUTABLE " view") +
+                              " --scene plane25 --env none --method deliot2023 --size 256x256 --render-scale 0.5"
+                              " --target-fps 0 --like-render --hide-ui --frames 2 --aov duvdx"
+                              " --set lighting.glint_footprint=" + footprint + " --screenshot " + out.string();
+        EXPECT_EQ(test::runUnderXvfb(command + " > /dev/null 2>&1"), 0) << footprint;
+        return readImage(out);
+    };
+    ImageF renderDuv = windowDuv("render"), outputDuv = windowDuv("output");
+    ASSERT_EQ(renderDuv.width, 128);
+    ASSERT_EQ(outputDuv.width, 128);
+    size_t compared = 0, exact = 0;
+    for (int y = 0; y < 128; ++y)
+        for (int x = 0; x < 128; ++x)
+            for (int c = 0; c < 2; ++c) {
+                float r = renderDuv.at(x, y, c), o = outputDuv.at(x, y, c);
+                if (std::abs(r) < 1e-7f) continue;
+                ++compared;
+                exact += o == 0.5f * r;
+            }
+    EXPECT_GT(compared, size_t(128 * 128 / 2));
+    EXPECT_EQ(exact, compared) << "duvdx x 0.5 on every glinty pixel";
+    // At scale 1 (offscreen, the same program) the setting changes nothing.
+    auto full = [&](const std::string& footprint) {
+        fs::path out = dir + "/full_" + footprint + ".exr";
+        EXPECT_EQ(test::runGlimmer({"render", "--scene", "plane25", "--env", "none", "--method", "deliot2023",
+                                    "--size", "64x64", "--set", "lighting.glint_footprint=" + footprint, "--out",
+                                    out.string()}).exitCode, 0);
+        return readImage(out);
+    };
+    EXPECT_EQ(full("render").pixels, full("output").pixels);
+}
+
 }  // namespace
 }  // namespace glimmer

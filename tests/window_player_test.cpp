@@ -74,7 +74,7 @@ TEST(WindowPlayer, HeadlessScreenshotUsesTheWindowsDefaults) {
     const std::string spelled =
         "--like-render --render-scale 0.25 --target-fps 0 --set aa=taa --set bloom.strength=0.04 --set exposure=auto"
         " --set lighting.split_glinty=1 --set texture_anisotropy=1 --set shadow.half_res=1 --set ao.half_res=1"
-        " --set taa.upsample=0 --set lod.pixel_error=1 ";
+        " --set taa.upsample=0 --set lod.pixel_error=1 --set lighting.glint_footprint=output ";
     ASSERT_EQ(runView(dir, base + "--screenshot default.png"), 0) << readAll(dir / "err.txt");
     ASSERT_EQ(runView(dir, base + spelled + "--screenshot spelled.png"), 0) << readAll(dir / "err.txt");
     ASSERT_EQ(runView(dir, base + "--like-render --screenshot like_render.png"), 0) << readAll(dir / "err.txt");

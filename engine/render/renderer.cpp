@@ -242,7 +242,12 @@ void Renderer::uploadFrameUniforms(const Scene& scene, const GpuScene& gpuScene,
     // z: the lighting pass moves glint footprints back to the unjittered pixel centre (only on jittered frames, so
     // an unjittered frame is shaded exactly as with aa=off).
     const bool stableGlints = settings_.value(param::taa_stable_glints) > 0.5f && view.jitter != glm::vec2(0.0f);
-    uniforms.jitter = {view.jitter, stableGlints ? 1.0f : 0.0f, 0.0f};
+    // w: the glint footprint's scale, the render size over the output size with lighting.glint_footprint=output
+    // (1: the render pixel's footprint).
+    float glintFootprint = 1.0f;
+    if (settings_.value(param::lighting_glint_footprint) > 0.5f && view.outputWidth > view.width && view.outputWidth > 0)
+        glintFootprint = float(view.width) / float(view.outputWidth);
+    uniforms.jitter = {view.jitter, stableGlints ? 1.0f : 0.0f, glintFootprint};
     uniforms.viewProjection = viewProjection;
     uniforms.inverseViewProjection = glm::inverse(viewProjection);
     uniforms.cameraPosition = glm::vec4(camera.position, 1.0f);

@@ -71,6 +71,10 @@ const std::vector<CommonParam>& commonParams() {
           "1 shades glinty and other pixels with separate programs (an early depth test picks each pixel's): "
           "pixels of non-glinty materials skip the method's code (the window's default)",
           {}, true}},
+        {{"lighting.glint_footprint", 0.0f, 0.0f, 1.0f,
+          "below render scale 1: glints filtered over the render pixel's footprint (render) or over the output "
+          "pixel's, at each render pixel's centre (output: the sparkle an output pixel shows; the window's default)",
+          {"render", "output"}}},
         {{"lod.pixel_error", 0.0f, 0.0f, 8.0f,
           "geometry level of detail: each mesh chunk drawn at the coarsest simplified level whose error stays within "
           "this many pixels of the render size; 0 draws full detail (the window's default on software renderers: 1)"}},

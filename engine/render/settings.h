@@ -52,6 +52,7 @@ inline constexpr CommonParamKey taa_feedback{"taa.feedback"};
 inline constexpr CommonParamKey taa_glint_history{"taa.glint_history"};
 inline constexpr CommonParamKey taa_stable_glints{"taa.stable_glints"};
 inline constexpr CommonParamKey lighting_split_glinty{"lighting.split_glinty"};
+inline constexpr CommonParamKey lighting_glint_footprint{"lighting.glint_footprint"};
 inline constexpr CommonParamKey lod_pixel_error{"lod.pixel_error"};
 inline constexpr CommonParamKey taa_upsample{"taa.upsample"};
 inline constexpr CommonParamKey taa_glint_feedback{"taa.glint_feedback"};
@@ -86,7 +87,7 @@ inline constexpr CommonParamKey shadow_distance{"shadow.distance"};
 inline constexpr CommonParamKey shadow_point_map_size{"shadow.point_map_size"};
 inline constexpr CommonParamKey shadow_half_res{"shadow.half_res"};
 inline constexpr CommonParamKey shadow_cache{"shadow.cache"};
-inline constexpr CommonParamKey kAll[] = {exposure, texture_anisotropy, ambient, light_intensity, light_count, light_turn, light_sun_diameter, light_area_size, light_area_intensity, material_alpha, material_metallic, material_ndf, material_glinty, material_density_scale, material_glint_density, material_glint_angular_size, material_glint_anisotropy, material_glint_color_variation, material_clearcoat, material_clearcoat_roughness, env_intensity, env_rotation, aa, ssaa_factor, taa_feedback, taa_glint_history, taa_stable_glints, lighting_split_glinty, lod_pixel_error, taa_upsample, taa_glint_feedback, bloom_strength, bloom_radius, exposure_auto, tonemap, probes_enabled, probes_face_size, probes_max, ao_enabled, ao_screen, ao_sky, ao_radius, ao_power, ao_slices, ao_steps, ao_falloff, ao_denoise, ao_half_res, ao_multibounce, ao_sky_cell, ao_sky_rays, shadow_enabled, shadow_map_size, shadow_cascades, shadow_filter_radius, shadow_bias, shadow_normal_bias, shadow_slope_bias, shadow_distance, shadow_point_map_size, shadow_half_res, shadow_cache};
+inline constexpr CommonParamKey kAll[] = {exposure, texture_anisotropy, ambient, light_intensity, light_count, light_turn, light_sun_diameter, light_area_size, light_area_intensity, material_alpha, material_metallic, material_ndf, material_glinty, material_density_scale, material_glint_density, material_glint_angular_size, material_glint_anisotropy, material_glint_color_variation, material_clearcoat, material_clearcoat_roughness, env_intensity, env_rotation, aa, ssaa_factor, taa_feedback, taa_glint_history, taa_stable_glints, lighting_split_glinty, lighting_glint_footprint, lod_pixel_error, taa_upsample, taa_glint_feedback, bloom_strength, bloom_radius, exposure_auto, tonemap, probes_enabled, probes_face_size, probes_max, ao_enabled, ao_screen, ao_sky, ao_radius, ao_power, ao_slices, ao_steps, ao_falloff, ao_denoise, ao_half_res, ao_multibounce, ao_sky_cell, ao_sky_rays, shadow_enabled, shadow_map_size, shadow_cascades, shadow_filter_radius, shadow_bias, shadow_normal_bias, shadow_slope_bias, shadow_distance, shadow_point_map_size, shadow_half_res, shadow_cache};
 }  // namespace param
 
 struct RenderSettings {

@@ -65,6 +65,7 @@ bool panelHidesParameter(const std::string& name) {
                                         "taa.glint_history", "taa.stable_glints", "shadow.map_size",
                                         "shadow.point_map_size", "shadow.cache", "texture_anisotropy",
                                         "lod.pixel_error", "lighting.split_glinty", "taa.upsample",
+                                        "lighting.glint_footprint",
                                         "shadow.bias", "shadow.normal_bias", "shadow.slope_bias"};
     for (const char* n : names)
         if (name == n) return true;

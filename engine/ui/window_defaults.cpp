@@ -14,6 +14,9 @@ void applyWindowDefaults(RenderSettings& settings, bool softwareRenderer) {
     if (!settings.isSet(param::exposure) && !settings.isSet(param::exposure_auto)) settings.apply("exposure=auto");
     // Every window shades glinty and other pixels with separate programs (render/frame/lighting_pass.h).
     setDefault(param::lighting_split_glinty, "lighting.split_glinty=1");
+    // Glints are sub-pixel: below render scale 1 each render pixel shades the sparkle of an output pixel's footprint
+    // at its centre, so the glints a player sees do not thin out with the scale (issue 39; docs/window.md).
+    setDefault(param::lighting_glint_footprint, "lighting.glint_footprint=output");
     if (!softwareRenderer) return;
     // Material textures trilinear: llvmpipe's anisotropic filtering was about half the frame at render scale 0.25
     // (docs/performance.md).

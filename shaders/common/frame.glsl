@@ -12,7 +12,8 @@ layout(std140, binding = BINDING_FRAME) uniform FrameBlock {
                              // last w of the y lights; the punctual ones come first)
     uvec4 u_sample;          // x: accumulation sample index (0 = first estimate of this view; IBL modes)
     vec4 u_jitter;           // xy: TAA sub-pixel jitter of this frame in pixels; z: 1 when glints are evaluated
-                             // at the unjittered pixel centre (taa.stable_glints; docs/image.md)
+                             // at the unjittered pixel centre (taa.stable_glints; docs/image.md); w: the glint
+                             // footprint's scale (lighting.glint_footprint: render size / output size, else 1)
 };
 
 // Lights (std430). type: 0 directional (vector = unit direction towards the light), 1 point (vector = position),

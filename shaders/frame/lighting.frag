@@ -247,6 +247,19 @@ PixelSurface readPixelSurface(ivec2 pixel, float depth) {
 #if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
     if (p.glinty) glintSurfaceDerivatives(p.s, pixel, p.gbufferPosition, p.position);
 #endif
+    // lighting.glint_footprint=output below render scale 1: the glint is filtered over an output pixel's footprint
+    // at this render pixel's centre (after the unjittering above, which moves by render pixels), the sparkle an
+    // output pixel would show; the mean is unchanged (every method keeps E[D] = D at any footprint).
+    if (p.glinty && u_jitter.w > 0.0 && u_jitter.w < 1.0) {
+        p.s.duvdx *= u_jitter.w;
+        p.s.duvdy *= u_jitter.w;
+#if defined(GLINT_SURFACE_DERIVATIVES) && !defined(NON_GLINTY_PIXELS)
+        p.s.dpdx *= u_jitter.w;
+        p.s.dpdy *= u_jitter.w;
+        p.s.dndx *= u_jitter.w;
+        p.s.dndy *= u_jitter.w;
+#endif
+    }
     p.baseColor = baseColorMask.rgb;
     p.metallic = tangentMetallic.w;
     return p;

@@ -65,7 +65,7 @@ RenderSettings captureSettings(const RenderSettings& frame) {
 // window or between tests now reuses them.
 bool captureIgnores(const std::string& name) {
     for (const char* prefix : {"exposure", "tonemap", "bloom.", "aa", "ssaa.", "taa.", "shadow.", "ao.", "probes.",
-                               "lighting.split_glinty"})
+                               "lighting.split_glinty", "lighting.glint_footprint"})
         if (name.rfind(prefix, 0) == 0) return true;
     return false;
 }
