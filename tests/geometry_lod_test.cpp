@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <map>
 #include <set>
@@ -223,6 +225,40 @@ TEST(LightingSplit, SplitEqualsUnsplitAndItsClassesAreTheGlintyPixels) {
                 glinty, classes.size(), differing, worst);
     EXPECT_LT(worst, 1e-5) << "each pixel must be shaded by the program of its class with the same terms";
     EXPECT_EQ(splitResult.stats["counts"]["non_finite_values"].get<size_t>(), 0u);
+}
+
+// A shader's text with its quoted includes (shaders/ is the include root; macro includes such as
+// GLINT_METHOD_FILE are left out), each file once.
+std::string withIncludes(const std::filesystem::path& root, const std::string& file, std::set<std::string>& seen) {
+    if (!seen.insert(file).second) return {};
+    std::ifstream in(root / file);
+    EXPECT_TRUE(in.good()) << file;
+    std::string text, line;
+    while (std::getline(in, line)) {
+        size_t open = line.find("#include \"");
+        if (open != std::string::npos) {
+            size_t close = line.find('"', open + 10);
+            text += withIncludes(root, line.substr(open + 10, close - open - 10), seen);
+        } else {
+            text += line + "\n";
+        }
+    }
+    return text;
+}
+
+// With lighting.split_glinty each pixel passes the GL_EQUAL depth test of one lighting program only. A fragment
+// shader with side effects (the method output check's atomics) runs before its depth test unless it declares early
+// fragment tests, and then every pixel paid for both programs: the court's lighting pass took 2.2x as long. No
+// query tells: llvmpipe counts GL_FRAGMENT_SHADER_INVOCATIONS before its depth test either way (+2.2 per pixel
+// for the split with and without the declaration), so the source is what this reads.
+TEST(LightingSplit, LightingShaderTestsDepthBeforeItsSideEffects) {
+    const std::filesystem::path root = std::filesystem::path(GLIMMER_SOURCE_DIR) / "shaders";
+    std::set<std::string> seen;
+    const std::string text = withIncludes(root, "frame/lighting.frag", seen);
+    const bool sideEffects = text.find("atomicAdd(") != std::string::npos || text.find("imageStore(") != std::string::npos;
+    EXPECT_TRUE(sideEffects) << "the method output check's atomics are in the lighting shader";
+    EXPECT_NE(text.find("layout(early_fragment_tests) in;"), std::string::npos)
+        << "frame/lighting.frag has side effects: without early fragment tests both split programs shade every pixel";
 }
 
 }  // namespace
