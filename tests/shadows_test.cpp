@@ -285,6 +285,34 @@ TEST(Shadows, LitSideIsUnchangedAndTheShadowHoldsOnlyAmbient) {
     EXPECT_EQ(r.notAmbient, 0);
 }
 
+// Alpha-masked casters (glTF MASK) are drawn into the shadow maps by their own program (the texture read and the
+// discard; render/shadows/shadow_map_pass.h), the others by one without fragment work: a masked box whose alpha is
+// above its cutoff casts the analytic shadow, one below it casts none (the G-buffer drops it too).
+TEST(Shadows, AlphaMaskedCastersShadowWhatTheyDraw) {
+    ShadowRig rig({{-0.5, 1.0, -0.6}, {0.5, 1.6, 0.6}}, sunAt(45.0f, 30.0f));
+    const Camera& camera = rig.scene.cameras[0];
+    std::vector<int> classes = rig.analytic(camera);
+    rig.scene.materials[1].alphaCutoff = 0.5f;
+    rig.scene.materials[1].baseColor.w = 0.9f;
+    BoundaryCheck kept = checkBoundary(classes, rig.visibility(RenderSettings{}, camera), rig.size);
+    EXPECT_GT(kept.shadowedPixels, 2000);
+    EXPECT_EQ(kept.misplaced, 0) << "kept masked caster: first misplaced pixel at (" << kept.firstX << ", "
+                                 << kept.firstY << ")";
+    rig.scene.materials[1].baseColor.w = 0.2f;
+    RenderSettings redrawn;
+    redrawn.apply("shadow.cache=0");   // the cached maps hold the kept caster (a material edit is no geometry change)
+    std::vector<float> dropped = rig.visibility(redrawn, camera);
+    int shadowed = 0, inAnalyticShadow = 0;
+    for (int y = 0; y < rig.size; ++y)
+        for (int x = 0; x < rig.size; ++x) {
+            if (classes[size_t(y) * rig.size + size_t(x)] != kShadowed) continue;
+            ++inAnalyticShadow;
+            shadowed += ShadowRig::red(dropped, rig.size, x, y) < 0.5f;
+        }
+    EXPECT_GT(inAnalyticShadow, 2000);
+    EXPECT_EQ(shadowed, 0) << "a caster below its alpha cutoff still shadows";
+}
+
 // Makes the rig's plane glinty metal (no diffuse) without ambient, so that inside a shadow only the light could add
 // radiance, and checks for every glint method: radiance exactly 0 in the shadowed pixels 3 px from the analytic
 // boundary, > 0 there with shadows off (else the check proves nothing).

@@ -220,7 +220,8 @@ void GpuScene::setTextureAnisotropy(float maxAnisotropy) const {
         if (anisotropic_[i]) glTextureParameterf(textures_[i].id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, maxAnisotropy);
 }
 
-void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix) const {
+void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix,
+                            bool transformOnly) const {
     const Material& material = scene.materials[instance.material];
     // A transform with negative determinant mirrors the mesh, which turns counter-clockwise front faces clockwise
     // on screen (glTF 3.5.2 instantiation). The front face is set for two-sided materials too, so that
@@ -233,6 +234,7 @@ void GpuScene::bindInstance(const Scene& scene, const Instance& instance, bool f
         glCullFace(GL_BACK);
     }
     glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(instance.transform));
+    if (transformOnly) return;
     if (normalMatrix) {   // depth-only programs (shadow maps) have no normals
         glm::mat3 normals = glm::inverseTranspose(glm::mat3(instance.transform));
         glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(normals));
@@ -297,6 +299,8 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
         const Material& material = scene.materials[instance.material];
         if (material.blend) continue;   // drawBlendedBackToFront
         if (selection == DrawSelection::OpaqueEmissive && !isEmissive(material)) continue;
+        if (selection == DrawSelection::DepthOnlyUnmasked && material.alphaCutoff >= 0.0f) continue;
+        if (selection == DrawSelection::DepthOnlyMasked && material.alphaCutoff < 0.0f) continue;
         const MeshBuffers& mesh = meshes_[instance.mesh];
         // Visible chunks; consecutive ones merge into one range (they are adjacent in the index buffer).
         const glm::mat4 clipFromMesh = viewProjection * instance.transform;
@@ -333,7 +337,8 @@ void GpuScene::drawInstances(const Scene& scene, const glm::mat4& viewProjection
         }
         if (drawCounts_.empty()) continue;
         bindInstance(scene, instance, selection == DrawSelection::OpaqueEmissive,
-                     selection != DrawSelection::OpaqueDepthOnly);
+                     selection == DrawSelection::Opaque || selection == DrawSelection::OpaqueEmissive,
+                     selection == DrawSelection::DepthOnlyUnmasked);
         glBindVertexArray(mesh.vao.id());
         glMultiDrawElements(GL_TRIANGLES, drawCounts_.data(), GL_UNSIGNED_INT, drawOffsets_.data(),
                             GLsizei(drawCounts_.size()));

@@ -18,8 +18,10 @@ namespace glimmer {
 // Which instances a geometry pass draws: the G-buffer takes every material that is not blended; the emissive pass
 // the non-blended emissive ones (again, depth-tested against the G-buffer's depth); blended materials are drawn
 // by drawBlendedBackToFront only; depth-only programs (the shadow maps') the non-blended ones without setting the
-// normal matrix (location 1), which they do not have.
-enum class DrawSelection { Opaque, OpaqueEmissive, OpaqueDepthOnly };
+// normal matrix (location 1), which they do not have: the alpha-masked materials (glTF MASK) and the others in
+// separate draws, so that the others take a program without a fragment stage's work (no discard: the depth test
+// runs before it; on llvmpipe 6x faster shadow maps).
+enum class DrawSelection { Opaque, OpaqueEmissive, DepthOnlyUnmasked, DepthOnlyMasked };
 
 // Level of detail for a draw (render/mesh_chunks.h): a chunk at distance d from `eye` (to its world-space bounding
 // sphere; 0 inside it) is drawn at the coarsest level whose world-space error is at most d x errorPerDistance.
@@ -84,7 +86,10 @@ public:
 private:
     // Binds the instance's uniforms (locations 0-4; `forward` adds the emission at 5 and the emissive texture),
     // textures and cull / front-face state.
-    void bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix) const;
+    // transformOnly: the face culling and the model matrix, no material (depth-only programs without a fragment
+    // stage's work have no other uniforms).
+    void bindInstance(const Scene& scene, const Instance& instance, bool forward, bool normalMatrix,
+                      bool transformOnly = false) const;
     struct MeshBuffers {
         gl::VertexArray vao;
         gl::Buffer vertices, indices;

@@ -160,7 +160,7 @@ std::vector<std::string> Renderer::reloadChangedPrograms(const std::vector<std::
                 gl::Program fresh(shaderRoot_, program->desc());
                 *program = std::move(fresh);  // swap only after a successful link
             }
-            if (name == "shadow_depth") shadowMaps_->invalidate();
+            if (name == "shadow_depth" || name == "shadow_depth_masked") shadowMaps_->invalidate();
             shaderErrors_.erase(name);
             shaderErrors_.erase("all programs");
             rebuilt.push_back(name);

@@ -1,6 +1,8 @@
 // Shadow maps: depth only; alpha-masked materials (glTF MASK) drop the texels the G-buffer drops, so foliage and
-// grilles cast the shadow of what is drawn.
+// grilles cast the shadow of what is drawn. Without ALPHA_MASK (every other material) the stage does nothing and has
+// no discard, so the depth test runs before it (render/shadows/shadow_map_pass.h).
 #include "common/bindings.glsl"
+#ifdef ALPHA_MASK
 #include "common/frame.glsl"
 #include "common/footprint.glsl"
 #include "common/material_textures.glsl"
@@ -32,3 +34,6 @@ void main() {
         if (alpha < cutoff) discard;
     }
 }
+#else
+void main() {}
+#endif

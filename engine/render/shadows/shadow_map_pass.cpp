@@ -8,8 +8,10 @@ namespace glimmer {
 
 ShadowMapPass::ShadowMapPass(const std::filesystem::path& shaderRoot, ShadowArray array,
                              std::shared_ptr<ShadowMaps> shadows)
-    : program_(shaderRoot, {"shadow_depth", {{GL_VERTEX_SHADER, "shadows/shadow_depth.vert"},
-                                             {GL_FRAGMENT_SHADER, "shadows/shadow_depth.frag"}}}),
+    : unmasked_(shaderRoot, {"shadow_depth", {{GL_VERTEX_SHADER, "shadows/shadow_depth.vert"},
+                                              {GL_FRAGMENT_SHADER, "shadows/shadow_depth.frag"}}}),
+      masked_(shaderRoot, {"shadow_depth_masked", {{GL_VERTEX_SHADER, "shadows/shadow_depth.vert"},
+                                                   {GL_FRAGMENT_SHADER, "shadows/shadow_depth.frag"}}, {"ALPHA_MASK"}}),
       array_(array),
       shadows_(std::move(shadows)) {}
 
@@ -43,9 +45,13 @@ void ShadowMapPass::execute(const FrameContext& frame) {
         state.apply();
         const float clearDepth = 0.0f;
         glClearNamedFramebufferfv(state.framebuffer, GL_DEPTH, 0, &clearDepth);
-        program_.use();
-        glUniformMatrix4fv(5, 1, GL_FALSE, glm::value_ptr(view.viewProjection));
-        frame.gpuScene.drawInstances(frame.scene, view.viewProjection, DrawSelection::OpaqueDepthOnly);
+        for (gl::Program* program : {&unmasked_, &masked_}) {
+            program->use();
+            glUniformMatrix4fv(5, 1, GL_FALSE, glm::value_ptr(view.viewProjection));
+            frame.gpuScene.drawInstances(frame.scene, view.viewProjection,
+                                         program == &unmasked_ ? DrawSelection::DepthOnlyUnmasked
+                                                               : DrawSelection::DepthOnlyMasked);
+        }
         view.dirty = false;
         (array_ == ShadowArray::Sun ? shadows.stats().sunViewsRendered : shadows.stats().localViewsRendered) += 1;
         shadows.stats().trianglesDrawn += frame.gpuScene.lastDrawStats().trianglesDrawn;
