@@ -145,6 +145,30 @@ TEST(EnvironmentGlints, MeanUnderTheSkyMatchesTheSplitSum) {
     EXPECT_LT(worst, 0.02);
 }
 
+size_t differingValues(const RenderResult& a, const RenderResult& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.hdr.size(); ++i) n += a.hdr[i] != b.hdr[i];
+    return n;
+}
+
+// The window's first picture defers the environment glints (Renderer::setDeferRefinements): that frame is the image
+// without them, bit for bit; the next frame without the deferral builds them, and once built a deferring frame keeps
+// them.
+TEST(EnvironmentGlints, FirstPictureDefersThemAndTheNextFrameBuildsThem) {
+    const RenderRequest glinty = skyPlane("deliot2023", 4, 8.0f);
+    OffscreenSession window(glinty);
+    window.renderer().setDeferRefinements(true);
+    const RenderResult first = window.render(glinty);
+    const RenderResult without = window.render(skyPlane("deliot2023", 0, 8.0f));
+    window.renderer().setDeferRefinements(false);
+    const RenderResult second = window.render(glinty);
+    window.renderer().setDeferRefinements(true);
+    const RenderResult third = window.render(glinty);
+    EXPECT_EQ(differingValues(first, without), 0u) << "the deferred first picture has environment glints";
+    EXPECT_GT(differingValues(second, without), without.hdr.size() / 8) << "the next frame built none";
+    EXPECT_EQ(differingValues(third, second), 0u) << "built glints dropped by a later deferring frame";
+}
+
 TEST(EnvironmentGlints, Wang2020DrawsItsOwnEnvironmentGlintsByDefault) {
     EXPECT_EQ(defaultIblOf(findGlintMethod("wang2020")), "wang2020");
     EXPECT_EQ(defaultIblOf(findGlintMethod("deliot2023")), "prefiltered");

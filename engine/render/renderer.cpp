@@ -309,6 +309,7 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
         .environment = *environment_,
         .resources = resources_,
         .blendSample = blendSample,
+        .deferRefinements = deferRefinements_,
         .recordStats = [&](const std::string& name, double ms) { if (measurePasses) timer_.recordWallOnly(name, ms); },
         .recordOnDemand = [&](const std::string& name, double ms) { recordOnDemand(name, ms, measurePasses); },
     };

@@ -80,6 +80,10 @@ public:
     void setPrepareListener(std::function<void(const std::string& passName)> listener) {
         prepareListener_ = std::move(listener);
     }
+    // While on, passes skip on-demand work that only refines the image and has not run yet
+    // (PrepareContext::deferRefinements): the window's first picture comes without the environment glints, which
+    // the next frame builds. Off by default (offscreen renders and tests see every term in their first frame).
+    void setDeferRefinements(bool defer) { deferRefinements_ = defer; }
 
     // Renders one view: the environment for the scene, every pass's prepare() in list order (shadow fitting, probe
     // captures, the sky bake, the method's data, TAA's jitter...), the frame's uniforms, then every pass that runs.
@@ -187,6 +191,7 @@ private:
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
     std::function<void(const std::string&)> prepareListener_;
+    bool deferRefinements_ = false;
     uint32_t frameIndex_ = 0;
 };
 

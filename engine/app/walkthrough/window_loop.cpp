@@ -144,8 +144,11 @@ private:
         renderer_->setPrepareListener([this](const std::string& pass) {
             if (auto step = LoadingScreen::stepOfPass(pass)) loading_->show(*step, *uiRenderer_);
         });
+        // The environment glints (about 0.6 s on llvmpipe) are built by the frame after the first picture.
+        renderer_->setDeferRefinements(true);
     }
     void finishLoading() {
+        renderer_->setDeferRefinements(false);
         renderer_->setPrepareListener({});
         loading_->finish();
     }

@@ -13,7 +13,8 @@ void EnvironmentGlintsPass::prepare(PrepareContext& context) {
     const EnvironmentGlintSettings settings = environmentGlintSettings(ibl, context.settings.iblModeValues(ibl.id));
     const bool active = findGlintMethod(context.settings.method).environmentGlints && settings.levels > 0 &&
                         context.environment.enabled();
-    if (!active) {
+    // Not built yet and the frame asks for its picture first: this frame has no environment glints.
+    if (!active || (context.deferRefinements && !glints_.built())) {
         context.resources.publish(FrameResource::EnvironmentGlints, {});
         return;
     }

@@ -36,6 +36,9 @@ struct PrepareContext {
     FrameResources& resources;
     // A later sample k > 0 of an accumulating IBL mode (the G-buffer of sample 0 is reused).
     bool blendSample = false;
+    // The window's first picture: work that only refines the image and is not there yet (the environment glints'
+    // levels and weights) waits for a later frame, so the player sees the scene sooner (Renderer::setDeferRefinements).
+    bool deferRefinements = false;
     std::function<void(const std::string& name, double wallMs)> recordStats, recordOnDemand;
 };
 
