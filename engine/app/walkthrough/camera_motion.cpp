@@ -14,13 +14,23 @@ CameraMotion::CameraMotion(ui::WindowControls& controls, std::function<void(cons
     : controls_(controls), showMessage_(std::move(showMessage)) {}
 
 // Walking collides with the scene's triangles (Bullet BVH, built once per scene); a scene without any flies.
+void CameraMotion::prebuildCollision(const Scene& scene) {
+    pendingScene_ = &scene;
+    pendingCollision_ = std::async(std::launch::async, [&scene] { return std::make_unique<SceneCollision>(scene); });
+}
+
 void CameraMotion::buildCollision(const Scene& scene) {
     Stopwatch clock;
     collision_.reset();   // a scene without triangles must not walk on the previous scene's
+    const bool prebuilt = pendingCollision_.valid() && pendingScene_ == &scene;
     try {
-        collision_ = std::make_unique<SceneCollision>(scene);
-        log::info("view: collision mesh of ", collision_->triangleCount(), " triangles in ",
-                  twoDecimals(clock.elapsedMs()), " ms");
+        if (pendingCollision_.valid()) {
+            std::unique_ptr<SceneCollision> built = pendingCollision_.get();   // rethrows the thread's error
+            if (prebuilt) collision_ = std::move(built);
+        }
+        if (!prebuilt) collision_ = std::make_unique<SceneCollision>(scene);
+        log::info("view: collision mesh of ", collision_->triangleCount(), " triangles ",
+                  prebuilt ? "ready after waiting " : "in ", twoDecimals(clock.elapsedMs()), " ms");
     } catch (const std::exception& e) {
         log::warn("view: no walking: ", e.what());
     }

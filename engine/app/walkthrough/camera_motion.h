@@ -3,6 +3,7 @@
 #pragma once
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,10 @@ public:
     // `render --path` finds it. `scripted`: input with exact times, no frame is a stall.
     void startScene(const Scene& scene, const std::string& sceneSpec, const Camera& start,
                     std::filesystem::path pathFile, bool pathGiven, bool scripted);
+    // Starts building `scene`'s collision on another thread (the Bullet BVH is CPU work, about 0.1 s for the
+    // atrium): the window's start uploads the scene to the GPU and builds its shaders meanwhile, and startScene
+    // with the same scene, unchanged until then, takes the result.
+    void prebuildCollision(const Scene& scene);
 
     const Camera& camera() const { return motion_->camera(); }
     ui::MoveMode mode() const { return motion_->mode(); }
@@ -57,6 +62,8 @@ private:
     std::vector<Camera> cameras_;
     std::string sceneName_;
     std::unique_ptr<SceneCollision> collision_;  // null for a scene without triangles
+    std::future<std::unique_ptr<SceneCollision>> pendingCollision_;   // prebuildCollision's, for pendingScene_
+    const Scene* pendingScene_ = nullptr;
     std::unique_ptr<ui::PlayerMotion> motion_;
     ui::MoveMode preferredMode_ = ui::MoveMode::Walk;
     std::unique_ptr<ui::CameraPath> path_;       // the tour of the scene's cameras

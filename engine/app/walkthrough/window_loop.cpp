@@ -63,6 +63,7 @@ public:
         scene_ = baseScene_;
         applySceneOverrides(options.request.settings, scene_);
         updateMappedMaterial();
+        camera_.prebuildCollision(scene_);   // on another thread while the GPU upload and the shaders run here
         gpuScene_ = std::make_unique<GpuScene>(scene_);
         std::string rendererName = window_.rendererString();
         softwareRenderer_ = rendererName.find("llvmpipe") != std::string::npos ||
