@@ -210,6 +210,26 @@ TEST(Clearcoat, ZeroIsNoCoatAndGlintsAreAttenuatedLikeTheBase) {
     std::printf("glints under the coat: worst relative error %.2e over %d pixels\n", worst, size * size);
 }
 
+// The lighting program leaves the coat's terms out while no material of the scene is coated (SCENE_CLEARCOAT,
+// render/frame/lighting_pass.h): one renderer that sees a coat appear and go (a material override) renders each
+// image exactly as a fresh renderer does, so the program follows the scene both ways.
+TEST(Clearcoat, LightingProgramFollowsTheScenesCoat) {
+    RenderRequest plain = planeRequest("plane90", 48, {"ambient=0"});
+    plain.settings.method = "deliot2023";
+    RenderRequest coated = plain;
+    coated.settings.apply("material.clearcoat=1");
+    coated.settings.apply("material.clearcoat_roughness=0.3");
+    const RenderResult freshPlain = renderOffscreen(plain), freshCoated = renderOffscreen(coated);
+    OffscreenSession session(plain);
+    const RenderResult first = session.render(plain);
+    const RenderResult withCoat = session.render(coated);
+    const RenderResult again = session.render(plain);
+    EXPECT_TRUE(first.hdr == freshPlain.hdr);
+    EXPECT_TRUE(withCoat.hdr == freshCoated.hdr) << "a coat that appeared after the first frame is not shaded";
+    EXPECT_TRUE(again.hdr == freshPlain.hdr) << "the coat's removal did not restore the uncoated image";
+    EXPECT_FALSE(freshCoated.hdr == freshPlain.hdr) << "the coat changes nothing (the test proves nothing)";
+}
+
 // The coat's environment lobe (default IBL mode, prefiltered): under a constant environment L and no light, a
 // mirror-smooth coat adds c Fc L (its split-sum albedo A + B is 1 up to the table's precision) and scales the
 // base by 1 - c Fc, pixel by pixel against the uncoated render.

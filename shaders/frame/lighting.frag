@@ -305,6 +305,17 @@ vec3 clearcoatEnvironment(Clearcoat coat, vec3 position, vec3 toEye) {
     return coatEnvironment;
 }
 
+// Whether the pixel has a clear coat. Without SCENE_CLEARCOAT (no coated material in the scene:
+// render/frame/lighting_pass.h) it is the constant false and the coat's terms compile away; llvmpipe would run
+// them under an all-off mask otherwise.
+bool hasClearcoat(Clearcoat coat) {
+#ifdef SCENE_CLEARCOAT
+    return coat.weight > 0.0;
+#else
+    return false;
+#endif
+}
+
 // What the lights add besides the radiance: the parts other targets and the debug views need.
 struct LightSum {
     vec3 glintPart;         // the lights' specular on glinty pixels (inside radiance; TAA's glint part)
@@ -323,7 +334,7 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
     sum.tally = methodOutputTally();
     GlintSurface s = p.s;
     const bool sampledPixel = methodOutputSampled(s.pixel);
-    bool coated = coat.weight > 0.0;
+    bool coated = hasClearcoat(coat);
     int view = u_viewport.w;
     int lightCount = int(u_exposure.y);
 #ifdef SHADOWS
@@ -520,7 +531,7 @@ void main() {
     vec4 coatTexel = texelFetch(g_clearcoat, pixel, 0);
     Clearcoat coat = clearcoatFromGBuffer(coatTexel, toEye);
     vec4 coatTexelView = vec4(coatTexel.zw, coat.weight, 1.0);
-    bool coated = coat.weight > 0.0;
+    bool coated = hasClearcoat(coat);
 
     // Per-pixel glint setup, computed once and shared by every light (Deliot & Belcour 2023, Sec. 7). The
     // non-glinty variant never reads it (its debug views are not split off: render/frame/lighting_pass.h).

@@ -9,8 +9,14 @@
 
 namespace glimmer {
 
+bool sceneHasClearcoat(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.clearcoat > 0.0f) return true;
+    return false;
+}
+
 gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows,
-                                    bool nonGlinty) {
+                                    bool nonGlinty, bool clearcoat) {
     const GlintMethod& method = findGlintMethod(methodId);
     const IblMode& ibl = findIblMode(iblId);
     checkIblModeMethod(ibl, method.id);
@@ -24,6 +30,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
     if (method.surfaceDerivatives) desc.defines.push_back("GLINT_SURFACE_DERIVATIVES");
     if (method.slopeCovariance) desc.defines.push_back("GLINT_SLOPE_COVARIANCE");
     if (shadows) desc.defines.push_back("SHADOWS");
+    if (clearcoat) desc.defines.push_back("SCENE_CLEARCOAT");
     if (nonGlinty) {
         static const std::string nonGlintyDefine = "NON_GLINTY_PIXELS";   // (a named string: GCC 12's -Warray-bounds
         desc.defines.push_back(nonGlintyDefine);                          // misfires on the literal's temporary)
@@ -42,7 +49,7 @@ LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const Render
       iblId_(settings.ibl),
       shadows_(settings.value(param::shadow_enabled) > 0.5f),
       capture_(capture),
-      program_(shaderRoot, lightingProgramDesc(methodId_, iblId_, shadows_)) {
+      program_(shaderRoot, lightingProgramDesc(methodId_, iblId_, shadows_, false, clearcoat_)) {
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
     iblParams_ = gl::createBuffer(kMaxIblParams * sizeof(float), nullptr);
     createMethodResources();
@@ -59,7 +66,7 @@ void LightingPass::createMethodResources() {
 }
 
 bool LightingPass::rebuildProgram() {
-    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_));
+    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, false, clearcoat_));
     program_ = std::move(fresh);   // swap only after a successful link
     nonGlintyProgram_.reset();     // rebuilt from the same files on the next split frame
     if (findGlintMethod(methodId_).resourcesFrom == methodResourcesFrom_) return false;
@@ -68,7 +75,7 @@ bool LightingPass::rebuildProgram() {
 }
 
 void LightingPass::setShadows(bool shadows) {
-    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows));
+    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows, false, clearcoat_));
     program_ = std::move(fresh);
     nonGlintyProgram_.reset();
     shadows_ = shadows;
@@ -90,7 +97,8 @@ std::vector<gl::Program*> LightingPass::programs() {
 }
 
 void LightingPass::buildSplitPrograms() {
-    nonGlintyProgram_ = std::make_unique<gl::Program>(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, true));
+    nonGlintyProgram_ =
+        std::make_unique<gl::Program>(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, true, clearcoat_));
     if (!classProgram_)
         classProgram_ = std::make_unique<gl::Program>(
             shaderRoot_, gl::ProgramDesc{"lighting class", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
@@ -140,6 +148,13 @@ void LightingPass::uploadMethodParams(const Scene& scene, const RenderSettings& 
 
 void LightingPass::prepare(PrepareContext& context) {
     const RenderSettings& settings = context.settings;
+    // A coat appeared or went (a scene, a material override): the programs with or without its terms.
+    if (const bool coated = sceneHasClearcoat(context.scene); coated != clearcoat_) {
+        gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, false, coated));
+        program_ = std::move(fresh);
+        nonGlintyProgram_.reset();   // rebuilt on the next split frame
+        clearcoat_ = coated;
+    }
     Environment& environment = context.environment;
     const IblMode& ibl = findIblMode(iblId_);
     // IBL-mode resources may render (per-object environment maps), so they update before this frame's state.
