@@ -65,15 +65,23 @@ void main() {
         alpha *= mr.g * mr.g;                                 // alpha = roughness^2
         metallic *= mr.b;
     }
+    float glintMask = 1.0;
+#ifdef GBUFFER_EXTRA_TEXTURES   // a material of the scene has one of these textures (render/frame/gbuffer_pass.h)
     if ((u_textureMask & 8) != 0) baseColor.rgb *= sampleTexture(t_occlusion, textureUv, footprint).r;
-    float glintMask = (u_textureMask & 16) != 0 ? sampleTexture(t_glintMask, textureUv, footprint).r : 1.0;
+    if ((u_textureMask & 16) != 0) glintMask = sampleTexture(t_glintMask, textureUv, footprint).r;
+#endif
 
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;   // two-sided surfaces shade their back faces with the flipped normal
     vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
     t = dot(t, t) > 1e-12 ? normalize(t) : normalize(cross(abs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0), n));
     float bitangentSign = v_tangent.w < 0.0 ? -1.0 : 1.0;
-    ClearcoatMaterial coat = clearcoatMaterial(material, u_textureMask, t_clearcoat, t_clearcoatRoughness,
+#ifdef GBUFFER_EXTRA_TEXTURES
+    const int coatTextureMask = u_textureMask;
+#else
+    const int coatTextureMask = 0;   // no clear-coat textures in the scene: the coat's factors alone
+#endif
+    ClearcoatMaterial coat = clearcoatMaterial(material, coatTextureMask, t_clearcoat, t_clearcoatRoughness,
                                                t_clearcoatNormal, textureUv, footprint, n, t, bitangentSign);
     vec3 slopeCovariance = vec3(0.0);
 #ifdef GBUFFER_SLOPE_COVARIANCE

@@ -4,10 +4,29 @@
 #include "glints/methods.h"
 
 namespace glimmer {
+namespace {
+
+gl::ProgramDesc gbufferProgramDesc(bool slopeCovariance, bool extraTextures) {
+    gl::ProgramDesc desc{slopeCovariance ? "gbuffer/slope covariance" : "gbuffer",
+                         {{GL_VERTEX_SHADER, "frame/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "frame/gbuffer.frag"}}};
+    if (slopeCovariance) desc.defines.push_back("GBUFFER_SLOPE_COVARIANCE");
+    if (extraTextures) desc.defines.push_back("GBUFFER_EXTRA_TEXTURES");
+    return desc;
+}
+
+// Whether a material of the scene has an occlusion, glint-mask or clear-coat texture.
+bool sceneUsesExtraTextures(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.occlusionTexture >= 0 || m.glintMaskTexture >= 0 || m.clearcoatTexture >= 0 ||
+            m.clearcoatRoughnessTexture >= 0 || m.clearcoatNormalTexture >= 0)
+            return true;
+    return false;
+}
+
+}  // namespace
 
 GBufferPass::GBufferPass(const std::filesystem::path& shaderRoot)
-    : shaderRoot_(shaderRoot),
-      program_(shaderRoot, {"gbuffer", {{GL_VERTEX_SHADER, "frame/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "frame/gbuffer.frag"}}}) {}
+    : shaderRoot_(shaderRoot), program_(shaderRoot, gbufferProgramDesc(false, extraTextures_)) {}
 
 std::vector<gl::Program*> GBufferPass::programs() {
     std::vector<gl::Program*> all{&program_};
@@ -44,15 +63,17 @@ void GBufferPass::resize(const View& view, FrameResources& resources) {
 
 void GBufferPass::prepare(PrepareContext& context) {
     context.gpuScene.setTextureAnisotropy(context.settings.value(param::texture_anisotropy));
+    // A material with one of the extra textures appeared or went (a scene): the programs with or without them.
+    if (const bool extra = sceneUsesExtraTextures(context.scene); extra != extraTextures_) {
+        gl::Program fresh(shaderRoot_, gbufferProgramDesc(false, extra));
+        program_ = std::move(fresh);
+        slopeProgram_.reset();
+        extraTextures_ = extra;
+    }
     const bool wanted = findGlintMethod(context.settings.method).slopeCovariance;
     if (wanted) {
         context.gpuScene.ensureLeanMaps(context.scene);
-        if (!slopeProgram_) {
-            gl::ProgramDesc desc{"gbuffer/slope covariance",
-                                 {{GL_VERTEX_SHADER, "frame/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "frame/gbuffer.frag"}}};
-            desc.defines = {"GBUFFER_SLOPE_COVARIANCE"};
-            slopeProgram_ = std::make_unique<gl::Program>(shaderRoot_, desc);
-        }
+        if (!slopeProgram_) slopeProgram_ = std::make_unique<gl::Program>(shaderRoot_, gbufferProgramDesc(true, extraTextures_));
         if (!slopeTarget_) {
             // Half floats: the covariance of slopes (0 .. ~1 for real normal maps) needs no more; 8 bytes a pixel.
             slopeTarget_ = gl::createTexture2D(GL_RGBA16F, width_, height_);
