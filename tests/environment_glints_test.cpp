@@ -169,6 +169,21 @@ TEST(EnvironmentGlints, FirstPictureDefersThemAndTheNextFrameBuildsThem) {
     EXPECT_EQ(differingValues(third, second), 0u) << "built glints dropped by a later deferring frame";
 }
 
+// The window's strip names the on-demand work of the last edit (Renderer::lastEditPasses): the environment glints
+// built by the frame after the first picture are listed until an edit begins; an edit that needs no on-demand work
+// then lists nothing, not that earlier build.
+TEST(EnvironmentGlints, AnEditForgetsTheEarlierOnDemandPasses) {
+    const RenderRequest glinty = skyPlane("deliot2023", 4, 8.0f);
+    OffscreenSession window(glinty);
+    window.render(glinty);
+    bool listed = false;
+    for (const PassTiming& t : window.renderer().lastEditPasses()) listed |= t.name == "env_glints.levels";
+    EXPECT_TRUE(listed) << "the build is not listed";
+    window.renderer().forgetEditPasses();
+    window.render(glinty);   // nothing to rebuild
+    EXPECT_TRUE(window.renderer().lastEditPasses().empty());
+}
+
 TEST(EnvironmentGlints, Wang2020DrawsItsOwnEnvironmentGlintsByDefault) {
     EXPECT_EQ(defaultIblOf(findGlintMethod("wang2020")), "wang2020");
     EXPECT_EQ(defaultIblOf(findGlintMethod("deliot2023")), "prefiltered");

@@ -107,6 +107,9 @@ public:
     // The on-demand passes of the last frame that ran any (method / IBL-mode data rebuilt after an edit, probe
     // captures; wall ms), kept until the next edit so the window can show them.
     const std::vector<PassTiming>& lastEditPasses() const { return editPasses_; }
+    // An edit begins: lastEditPasses() then holds only what a later frame runs on demand (none when the edit needs
+    // no such work), not the passes of an earlier frame (the start's, or the frame after the first picture's).
+    void forgetEditPasses() { editPasses_.clear(); }
 
     // The frame list: each pass's name and declared resources, in order (tests walk it; checkFrameList()).
     std::vector<DeclaredPass> frameList() const;

@@ -235,6 +235,7 @@ private:
     void applySettings(const RenderSettings& requested) override {
         RenderSettings next = requested;
         edited_ = true;
+        renderer_->forgetEditPasses();
         // An IBL mode made for another method (picked on the panel) is refused with a notice in the window's words,
         // not a red error box; the mode in use stays.
         if (const IblMode& mode = findIblMode(next.ibl); !iblModeRunsWith(mode, next.method)) {
@@ -268,6 +269,7 @@ private:
     void programsRebuilt() override {
         ++settingsVersion_;
         edited_ = true;
+        renderer_->forgetEditPasses();
     }
     void showMessage(const std::string& text) override { overlay_.notify(text, now_); }
 
