@@ -73,7 +73,8 @@ void GBufferPass::prepare(PrepareContext& context) {
     const bool wanted = findGlintMethod(context.settings.method).slopeCovariance;
     if (wanted) {
         context.gpuScene.ensureLeanMaps(context.scene);
-        if (!slopeProgram_) slopeProgram_ = std::make_unique<gl::Program>(shaderRoot_, gbufferProgramDesc(true, extraTextures_));
+        if (!slopeProgram_)
+            slopeProgram_ = std::make_unique<gl::Program>(shaderRoot_, gbufferProgramDesc(true, extraTextures_));
         if (!slopeTarget_) {
             // Half floats: the covariance of slopes (0 .. ~1 for real normal maps) needs no more; 8 bytes a pixel.
             slopeTarget_ = gl::createTexture2D(GL_RGBA16F, width_, height_);
