@@ -36,6 +36,7 @@ struct ProbeRig {
     Scene scene;
     std::unique_ptr<GpuScene> gpu;
     std::unique_ptr<Renderer> renderer;
+    std::string method = "smooth";   // of every render()
 
     void finish() {
         Camera camera;
@@ -54,6 +55,7 @@ struct ProbeRig {
     }
     std::vector<float> render(const std::vector<std::string>& sets, bool measure = false) {
         RenderSettings settings;
+        settings.method = method;
         settings.apply("probes.face_size=64");
         // Ambient occlusion off: it darkens the environment term (probe reflections included) beside the wall,
         // which these tests of the probes themselves do not model.
@@ -289,6 +291,80 @@ TEST(ReflectionProbes, DiskCacheGivesTheSameImageAndRejectsDamage) {
         EXPECT_EQ(rig.renderer->probes().diskLoads(), 0);
         EXPECT_EQ(rig.renderer->probes().captures(), 1);
     }
+}
+
+// The window's start (Renderer::RefinementPace): its first picture (Deferred) lights with a preview of a new
+// environment and no probes, stores nothing in the disk cache and lists what waits; the frames after it (OnePerFrame)
+// run one refinement each (the environment's prefilter, then the probe capture, then the environment glints) and end
+// on the very image a renderer that does everything in its first frame makes.
+TEST(ReflectionProbes, PacedStartPreviewsThenRefinesOneStepAFrame) {
+    const std::string dir = test::makeTempDir("paced-start");
+    struct Variables {   // what this test sets, restored at its end
+        std::vector<std::pair<std::string, std::string>> saved;
+        void set(const char* name, const char* value) {
+            const char* old = std::getenv(name);
+            saved.push_back({name, old ? old : std::string("\x01")});
+            value ? setenv(name, value, 1) : unsetenv(name);
+        }
+        ~Variables() {
+            for (auto it = saved.rbegin(); it != saved.rend(); ++it)
+                it->second == "\x01" ? unsetenv(it->first.c_str()) : setenv(it->first.c_str(), it->second.c_str(), 1);
+        }
+    } variables;
+    variables.set("GLIMMER_CACHE_DIR", dir.c_str());
+    variables.set("GLIMMER_ENV_CACHE", nullptr);
+    variables.set("GLIMMER_PROBE_CACHE", nullptr);
+    variables.set("GLIMMER_ENV_PREFILTER_REFINE", "2");   // 3.5x faster; this test judges the pacing, not the maps
+    auto environmentFiles = [&] {
+        int n = 0;
+        for (const auto& e : std::filesystem::directory_iterator(dir))
+            n += e.path().filename().string().rfind("environment", 0) == 0;
+        return n;
+    };
+    ProbeRig rig;
+    buildWallScene(rig.scene);
+    rig.scene.environment = "";   // the procedural sky: rough lobes of the preview and the prefilter differ
+    rig.method = "deliot2023";     // a method with environment glints
+    rig.finish();
+    rig.renderer->setRefinementPace(Renderer::RefinementPace::Deferred);
+    const std::vector<float> first = rig.render({});
+    EXPECT_FALSE(rig.renderer->environment().refined());
+    EXPECT_TRUE(rig.renderer->probes().probes().empty());
+    EXPECT_EQ(rig.renderer->probes().captures(), 0);
+    EXPECT_EQ(environmentFiles(), 0) << "the preview was stored in the disk cache";
+    const std::vector<std::string> all = rig.renderer->waitingRefinements();
+    ASSERT_EQ(all.size(), 3u);
+    EXPECT_EQ(all[0], "environment maps");
+    EXPECT_EQ(all[1], "reflection probes");
+    EXPECT_EQ(all[2], "environment glints");
+
+    rig.renderer->setRefinementPace(Renderer::RefinementPace::OnePerFrame);
+    std::vector<float> paced;
+    for (size_t frame = 1; frame <= all.size(); ++frame) {
+        paced = rig.render({});
+        const std::vector<std::string>& waiting = rig.renderer->waitingRefinements();
+        ASSERT_EQ(waiting.size(), all.size() - frame) << "frame " << frame << " did not run exactly one refinement";
+        for (size_t i = 0; i < waiting.size(); ++i) EXPECT_EQ(waiting[i], all[frame + i]);
+    }
+    EXPECT_TRUE(rig.renderer->environment().refined());
+    EXPECT_EQ(environmentFiles(), 1) << "the refined maps were not stored";
+    EXPECT_EQ(rig.renderer->probes().captures(), 1);
+    ASSERT_EQ(rig.renderer->probes().probes().size(), 1u);
+
+    // Everything in the first frame, from scratch (no disk cache).
+    variables.set("GLIMMER_ENV_CACHE", "0");
+    variables.set("GLIMMER_PROBE_CACHE", "0");
+    rig.renderer = std::make_unique<Renderer>(defaultShaderDir(), RenderSettings{});
+    const std::vector<float> reference = rig.render({});
+    ASSERT_EQ(paced.size(), reference.size());
+    size_t differing = 0, previewDiffering = 0;
+    for (size_t i = 0; i < paced.size(); ++i) {
+        differing += paced[i] != reference[i];
+        previewDiffering += first[i] != reference[i];
+    }
+    EXPECT_EQ(differing, 0u) << "the paced frames end on another image";
+    // Control: the first picture (preview, no probes) is another image, so the check above can fail.
+    EXPECT_GT(previewDiffering, reference.size() / 20);
 }
 
 // CPU: the proxy box takes the median hit distance of each face, the scene bounds where the face saw mostly sky,

@@ -145,7 +145,7 @@ static gl::Program computeProgram(const std::filesystem::path& root, const char*
     return gl::Program(root, {name, {{GL_COMPUTE_SHADER, file}}});
 }
 
-void Environment::update(const std::string& text, const SunDescription& sun, const std::string& flag) {
+void Environment::update(const std::string& text, const SunDescription& sun, const std::string& flag, bool preview) {
     EnvironmentSpec spec = parseEnvironmentSpec(text, flag);
     std::ostringstream key;
     switch (spec.kind) {
@@ -167,6 +167,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
         specular_.reset();
         specularFine_.reset();
         enabled_ = false;
+        refined_ = true;
         active_ = spec;
         activeKey_ = key.str();
         timings_ = {};
@@ -193,6 +194,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
             activeKey_ = key.str();
             contentKey_ = parameters;
             enabled_ = true;
+            refined_ = true;
             log::info("environment ", text.empty() ? std::string("procedural") : text, ": read from the cache (",
                       cache->fileName(), ") in ", timings_.totalMs, " ms");
             return;
@@ -219,20 +221,61 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
         throw Error(flag + ": " + message);
     }
     timings_.brdfLutMs = lutMs;
-    if (cache) {
-        Stopwatch clock;
-        timings_.cacheStored = cache->store({sourceCube_.id(), specular_.id(), specularFine_.id(), brdfLut_.id()}, sh_);
-        timings_.cacheStoreMs = clock.elapsedMs();
-    }
-    timings_.totalMs = total.elapsedMs();
     active_ = spec;
     activeKey_ = key.str();
-    contentKey_ = parameters;
     enabled_ = true;
-    log::info("environment ", text.empty() ? std::string("procedural") : text, ": load ", timings_.loadMs,
-              " ms, cubemap ", timings_.convertMs, " ms, mips ", timings_.mipsMs, " ms, prefilter ",
-              timings_.prefilterMs, " ms, irradiance SH ", timings_.irradianceMs, " ms, BRDF table ",
-              timings_.brdfLutMs, " ms, total ", timings_.totalMs, " ms");
+    refined_ = false;
+    refineCacheParameters_ = parameters;
+    if (preview) {
+        fillPreview();
+        timings_.totalMs = total.elapsedMs();
+        log::info("environment ", text.empty() ? std::string("procedural") : text, ": a preview in ",
+                  timings_.totalMs, " ms (box-filtered mips for the specular rungs); the prefilter follows");
+        return;
+    }
+    timings_.totalMs = total.elapsedMs();
+    refine();
+}
+
+void Environment::refine() {
+    if (refined_) return;
+    Stopwatch clock;
+    prefilter();
+    finishAndTime(timings_.prefilterMs, clock);
+    if (!refineCacheParameters_.empty()) {
+        EnvironmentCache cache(cache::defaultCacheDir(), refineCacheParameters_);
+        timings_.cacheStored = cache.store({sourceCube_.id(), specular_.id(), specularFine_.id(), brdfLut_.id()}, sh_);
+        timings_.cacheStoreMs = clock.elapsedMs();
+    }
+    timings_.totalMs += timings_.prefilterMs + timings_.cacheStoreMs;
+    contentKey_ = refineCacheParameters_;
+    refined_ = true;
+    const std::string name = active_.kind == EnvironmentSpec::Kind::File ? active_.path.string() : "procedural";
+    log::info("environment ", name, ": load ", timings_.loadMs, " ms, cubemap ", timings_.convertMs, " ms, mips ",
+              timings_.mipsMs, " ms, prefilter ", timings_.prefilterMs, " ms, irradiance SH ",
+              timings_.irradianceMs, " ms, BRDF table ", timings_.brdfLutMs, " ms, total ", timings_.totalMs, " ms");
+}
+
+void Environment::fillPreview() {
+    // Each rung from the source's box-filtered mip whose texels are about as wide as the rung's lobe (2 alpha
+    // radians; a mip k texel spans about (pi / 2) / (kFaceSize >> k)), resampled bilinearly into the rung's face
+    // size: blurrier at the horizon and blockier than the quadrature, but a few milliseconds instead of seconds.
+    GLuint view = 0;
+    glGenTextures(1, &view);
+    glTextureView(view, GL_TEXTURE_CUBE_MAP_ARRAY, sourceCube_.id(), GL_RGBA32F, 0, GLuint(levelCount(kFaceSize)), 0, 6);
+    gl::Texture sourceArray(view);
+    glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    const int coarsest = levelCount(kFaceSize) - 1;
+    for (int rung = 1; rung <= kRungs; ++rung) {
+        const float texelsPerLobe = 2.0f * rungAlpha(rung) * float(kFaceSize) / 1.5707964f;
+        const int sourceMip = std::clamp(int(std::lround(std::log2(std::max(texelsPerLobe, 1.0f)))), 0, coarsest);
+        const int mip = rungMip(rung);
+        for (int ndf = 0; ndf < 2; ++ndf)
+            prefilter_->resample(sourceArray.id(), 0, sourceMip, specularFine_.id(), mip, (kFaceSize / 2) >> mip,
+                                 6 * rungCube(rung, ndf));
+    }
+    glFinish();
 }
 
 std::string Environment::cacheParameters(const EnvironmentSpec& spec, const SunDescription& sun) const {
@@ -388,8 +431,6 @@ void Environment::buildMaps(const EnvironmentSpec& spec, const SunDescription& s
 
     glGenerateTextureMipmap(cube);
     finishAndTime(timings_.mipsMs, clock);
-    prefilter();
-    finishAndTime(timings_.prefilterMs, clock);
     projectIrradiance();
     timings_.irradianceMs = clock.elapsedMs();
 }
@@ -467,7 +508,7 @@ void Environment::bind(float intensity, float rotationDegrees) {
 
 nlohmann::json Environment::stats() const {
     const char* kinds[] = {"procedural", "none", "constant", "file"};
-    nlohmann::json j = {{"kind", kinds[int(active_.kind)]}, {"enabled", enabled_}};
+    nlohmann::json j = {{"kind", kinds[int(active_.kind)]}, {"enabled", enabled_}, {"refined", refined_}};
     if (active_.kind == EnvironmentSpec::Kind::File) j["path"] = active_.path.string();
     if (enabled_) {
         j["face_size"] = kFaceSize;

@@ -96,7 +96,15 @@ public:
     // Makes `spec` the active environment; rebuilds only when the spec (or, for the procedural sky, the sun)
     // changed. `flag` names where the spec came from in error messages ("--env" or "scene environment").
     // Throws Error naming the flag and file when an image cannot be read or holds no RGB data.
-    void update(const std::string& spec, const SunDescription& sun, const std::string& flag);
+    // With `preview`, maps missing from the disk cache come in two steps: now everything but the specular prefilter
+    // (the rungs are filled from the source's box mips, a few ms instead of 1-3 s on llvmpipe), and refine() later
+    // (the window's first picture; Renderer::RefinementPace). Without, update() refines at once.
+    void update(const std::string& spec, const SunDescription& sun, const std::string& flag, bool preview = false);
+    // The maps are the prefiltered ones (false only between a preview update() and refine()). Data derived from
+    // the specular maps and cached on disk (the reflection probes) waits for it.
+    bool refined() const { return refined_; }
+    // Prefilters the specular rungs and stores the maps in the disk cache; nothing when already refined.
+    void refine();
     bool enabled() const { return enabled_; }
     // What the active maps were built from, as the disk cache keys them (the image's bytes or the procedural sky's
     // sun, the map sizes, the shaders' sources): "" for none or with the cache off (GLIMMER_ENV_CACHE=0). Caches of
@@ -126,6 +134,7 @@ private:
     void buildMaps(const EnvironmentSpec& spec, const SunDescription& sun);
     void fillProceduralSky(const SunDescription& sun, bool drawSun);
     void prefilter();
+    void fillPreview();
     void projectIrradiance();
 
     std::filesystem::path shaderRoot_;
@@ -137,6 +146,8 @@ private:
     std::string activeKey_, contentKey_;
     EnvironmentSpec active_;
     bool enabled_ = false;
+    bool refined_ = true;
+    std::string refineCacheParameters_;   // the disk cache key refine() stores under ("": not cached)
     EnvironmentTimings timings_;
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/bindings.glsl"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/debug.h"
@@ -218,8 +219,31 @@ std::vector<std::filesystem::path> Renderer::shaderDependencies() const {
     return all;
 }
 
+RefinementBudget Renderer::refinementBudget() const {
+    switch (refinementPace_) {
+        case RefinementPace::Deferred: return RefinementBudget(0);
+        case RefinementPace::OnePerFrame: return RefinementBudget(1);
+        case RefinementPace::AllAtOnce: break;
+    }
+    return RefinementBudget(RefinementBudget::kUnlimited);
+}
+
 void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag) {
-    if (ownEnvironment_) ownEnvironment_->update(scene.environment, sunFromScene(scene), flag);
+    RefinementBudget budget = refinementBudget();
+    prepareEnvironment(scene, flag, budget, [](const std::string&, double) {});
+    waitingRefinements_ = budget.waiting();
+}
+
+void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag, RefinementBudget& budget,
+                                  const std::function<void(const std::string&, double)>& recordOnDemand) {
+    if (!ownEnvironment_) return;
+    // Paced: a new environment missing from the disk cache comes as a preview first (Environment::update).
+    ownEnvironment_->update(scene.environment, sunFromScene(scene), flag, refinementPace_ != RefinementPace::AllAtOnce);
+    if (!ownEnvironment_->refined() && budget.take("environment maps")) {
+        Stopwatch clock;
+        ownEnvironment_->refine();
+        recordOnDemand("environment.prefilter", clock.elapsedMs());
+    }
 }
 
 bool Renderer::accumulating() const { return findIblMode(settings_.ibl).accumulates; }
@@ -285,7 +309,6 @@ FrameContext Renderer::frameContext(const Scene& scene, const GpuScene& gpuScene
 
 void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& view, bool measurePasses) {
     if (view.width < 1 || view.height < 1) throw Error("renderView: empty view");
-    prepareEnvironment(scene);
     view.temporalAa = false;
     view.jitter = glm::vec2(0.0f);
     view.postWidth = view.width;
@@ -298,6 +321,9 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
                       : asyncGpuTimers_ ? PassTimer::Mode::Async
                                         : PassTimer::Mode::Off);
     editPassesOfThisFrame_ = false;
+    RefinementBudget refinements = refinementBudget();
+    prepareEnvironment(scene, "scene environment", refinements,
+                       [&](const std::string& name, double ms) { recordOnDemand(name, ms, measurePasses); });
 
     // A later sample of an accumulated view reuses the G-buffer of sample 0 and is blended into the mean.
     const bool blendSample = accumulating() && view.sampleIndex > 0;
@@ -309,7 +335,7 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
         .environment = *environment_,
         .resources = resources_,
         .blendSample = blendSample,
-        .deferRefinements = deferRefinements_,
+        .refinements = refinements,
         .recordStats = [&](const std::string& name, double ms) { if (measurePasses) timer_.recordWallOnly(name, ms); },
         .recordOnDemand = [&](const std::string& name, double ms) { recordOnDemand(name, ms, measurePasses); },
     };
@@ -318,6 +344,7 @@ void Renderer::renderView(const Scene& scene, const GpuScene& gpuScene, View& vi
         if (prepareListener_) prepareListener_(pass->name());
         pass->prepare(prepare);
     }
+    waitingRefinements_ = refinements.waiting();
 
     // TAA jitters the projection: a screen-space translation (its prepare() chose the jitter).
     glm::mat4 projection = view.camera.projection(view.aspect());

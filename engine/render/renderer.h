@@ -80,10 +80,15 @@ public:
     void setPrepareListener(std::function<void(const std::string& passName)> listener) {
         prepareListener_ = std::move(listener);
     }
-    // While on, passes skip on-demand work that only refines the image and has not run yet
-    // (PrepareContext::deferRefinements): the window's first picture comes without the environment glints, which
-    // the next frame builds. Off by default (offscreen renders and tests see every term in their first frame).
-    void setDeferRefinements(bool defer) { deferRefinements_ = defer; }
+    // How on-demand work that only refines the image and has not run yet (PrepareContext::refinements: the
+    // environment's prefiltered maps, the reflection probes, the environment glints) is paced. AllAtOnce, the
+    // default: every frame runs all of it (offscreen renders and tests see every term in their first frame).
+    // Deferred: none runs (the window's first picture: the environment is a quick preview, see
+    // Environment::update). OnePerFrame: each frame runs at most one (the window after its first picture).
+    enum class RefinementPace { AllAtOnce, Deferred, OnePerFrame };
+    void setRefinementPace(RefinementPace pace) { refinementPace_ = pace; }
+    // What the last prepared frame left waiting (empty once the image is complete).
+    const std::vector<std::string>& waitingRefinements() const { return waitingRefinements_; }
 
     // Renders one view: the environment for the scene, every pass's prepare() in list order (shadow fitting, probe
     // captures, the sky bake, the method's data, TAA's jitter...), the frame's uniforms, then every pass that runs.
@@ -160,6 +165,9 @@ private:
     void uploadFrameUniforms(const Scene& scene, const GpuScene& gpuScene, const View& view,
                              const glm::mat4& projection);
     void recordOnDemand(const std::string& name, double ms, bool measurePasses);
+    RefinementBudget refinementBudget() const;   // this frame's, from refinementPace_
+    void prepareEnvironment(const Scene& scene, const std::string& flag, RefinementBudget& budget,
+                            const std::function<void(const std::string&, double)>& recordOnDemand);
 
     std::filesystem::path shaderRoot_;
     RenderSettings settings_;
@@ -194,7 +202,8 @@ private:
     std::map<std::string, std::string> shaderErrors_;
     bool asyncGpuTimers_ = false;
     std::function<void(const std::string&)> prepareListener_;
-    bool deferRefinements_ = false;
+    RefinementPace refinementPace_ = RefinementPace::AllAtOnce;
+    std::vector<std::string> waitingRefinements_;
     uint32_t frameIndex_ = 0;
 };
 

@@ -23,8 +23,8 @@ namespace {
 constexpr const char* kStepLabels[LoadingScreen::kStepCount] = {
     "building the shaders",
     "building the walking collision mesh",
-    "environment maps (disk cache, else computed)",
-    "reflection probes (disk cache, else captured)",
+    "environment maps (disk cache, else a preview)",
+    "reflection probes (disk cache, else after the first picture)",
     "glint data",
     "ambient occlusion (disk cache, else baked)",
     "the first picture",

@@ -65,6 +65,13 @@ std::vector<StatsLine> Overlay::statsLines(const Renderer& renderer, const Windo
         lines.push_back({note, true});
         lines.push_back({where, true});
     }
+    if (!renderer.waitingRefinements().empty()) {
+        // The frames after the first picture finish what it went without, one step a frame (Renderer::RefinementPace).
+        std::string refining = "refining, one a frame:";
+        for (size_t i = 0; i < renderer.waitingRefinements().size(); ++i)
+            refining += (i ? ", " : " ") + renderer.waitingRefinements()[i];
+        lines.push_back({refining});
+    }
     if (status.edited && !renderer.lastEditPasses().empty()) {
         std::string edits = "last edit:";
         for (const PassTiming& t : renderer.lastEditPasses()) edits += " " + t.name + " " + formatMsShort(t.wallMs);

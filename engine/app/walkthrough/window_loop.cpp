@@ -140,16 +140,20 @@ private:
     // The environment before the first frame, and the frame's on-demand work (probes, glint data, the sky bake) in
     // it, each step named on the loading frame.
     void prepareBehindLoadingFrame() {
+        // What only refines the image waits for the frames after the first picture, one a frame: the environment's
+        // prefilter (1-3 s on llvmpipe when not in the disk cache; a preview until then), the probes' capture (1.5
+        // s) and the environment glints (0.6 s). Warm caches supply the first two at once. Headless runs that write
+        // screenshots of given frames are captures: their every frame is complete.
+        pacedRefinements_ = !writesFrameScreenshots(options_);
+        if (pacedRefinements_) renderer_->setRefinementPace(Renderer::RefinementPace::Deferred);
         loading_->show(LoadingScreen::Environment, *uiRenderer_);
         renderer_->prepareEnvironment(scene_);
         renderer_->setPrepareListener([this](const std::string& pass) {
             if (auto step = LoadingScreen::stepOfPass(pass)) loading_->show(*step, *uiRenderer_);
         });
-        // The environment glints (about 0.6 s on llvmpipe) are built by the frame after the first picture.
-        renderer_->setDeferRefinements(true);
     }
     void finishLoading() {
-        renderer_->setDeferRefinements(false);
+        if (pacedRefinements_) renderer_->setRefinementPace(Renderer::RefinementPace::OnePerFrame);
         renderer_->setPrepareListener({});
         loading_->finish();
     }
@@ -465,6 +469,7 @@ private:
     PresentTarget present_;
     ui::Context ui_;
     bool uiHidden_ = false, softwareRenderer_ = false;
+    bool pacedRefinements_ = false;   // Renderer::RefinementPace: Deferred, then OnePerFrame (else AllAtOnce)
     bool edited_ = false;            // an edit happened (the strip's "last edit" line is about it)
     double frameMs_ = 0.0, now_ = 0.0;
     uint64_t settingsVersion_ = 0;   // every edit that restarts the accumulation changes it

@@ -13,16 +13,17 @@ void EnvironmentGlintsPass::prepare(PrepareContext& context) {
     const EnvironmentGlintSettings settings = environmentGlintSettings(ibl, context.settings.iblModeValues(ibl.id));
     const bool active = findGlintMethod(context.settings.method).environmentGlints && settings.levels > 0 &&
                         context.environment.enabled();
-    // Not built yet and the frame asks for its picture first: this frame has no environment glints.
-    if (!active || (context.deferRefinements && !glints_.built())) {
+    // Not built yet and the frame's refinements are spent (the window's first picture takes none): this frame has
+    // no environment glints.
+    if (!active || (!glints_.built() && !context.refinements.take("environment glints"))) {
         context.resources.publish(FrameResource::EnvironmentGlints, {});
         return;
     }
     // The probes as ProbesPass published them this frame: a new capture is a new array (a new serial); the count
-    // is its layers / 12 (2 NDFs x 6 faces per probe).
+    // is its layers / 12 (2 NDFs x 6 faces per probe). Width 0: none (a placeholder array).
     const FrameImage& probes = context.resources.get(FrameResource::ReflectionProbes);
     EnvironmentGlints::Probes probeData;
-    if (GLuint array = probes.texture()) {
+    if (GLuint array = probes.texture(); array && probes.width > 0) {
         GLint layerFaces = 0;
         glGetTextureLevelParameteriv(array, 0, GL_TEXTURE_DEPTH, &layerFaces);
         probeData = {array, int(layerFaces) / 12, int(probes.serial)};

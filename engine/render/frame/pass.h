@@ -24,6 +24,29 @@
 
 namespace glimmer {
 
+// How many refinements (see PrepareContext::refinements) one frame may run: take() says whether `what` may run
+// now; what has to wait is listed, so the window can say what is still being refined.
+class RefinementBudget {
+public:
+    static constexpr int kUnlimited = -1;
+    explicit RefinementBudget(int allowed = kUnlimited) : left_(allowed) {}
+    bool take(const std::string& what) {
+        if (left_ == 0) {
+            waiting_.push_back(what);
+            return false;
+        }
+        if (left_ > 0) --left_;
+        return true;
+    }
+    // Work that could not run for another reason (it needs a refinement that is still waiting).
+    void wait(const std::string& what) { waiting_.push_back(what); }
+    const std::vector<std::string>& waiting() const { return waiting_; }
+
+private:
+    int left_;
+    std::vector<std::string> waiting_;
+};
+
 // What prepare() sees: the view (which a pass may change: TAA sets its jitter), the scene, the settings, the
 // environment, and where work done here reports its time: recordStats lists it in --stats only (the sky bake),
 // recordOnDemand also in the window's "last edit" line (data rebuilt after an edit: probes, method tables).
@@ -36,9 +59,10 @@ struct PrepareContext {
     FrameResources& resources;
     // A later sample k > 0 of an accumulating IBL mode (the G-buffer of sample 0 is reused).
     bool blendSample = false;
-    // The window's first picture: work that only refines the image and is not there yet (the environment glints'
-    // levels and weights) waits for a later frame, so the player sees the scene sooner (Renderer::setDeferRefinements).
-    bool deferRefinements = false;
+    // Work that only refines the image and is not there yet (the environment's prefiltered maps, the reflection
+    // probes, the environment glints) asks this budget first: the window's first picture takes none, later frames one
+    // each, so the player sees the scene sooner and never waits on all of them at once (Renderer::setRefinementPace).
+    RefinementBudget& refinements;
     std::function<void(const std::string& name, double wallMs)> recordStats, recordOnDemand;
 };
 

@@ -107,6 +107,17 @@ ReflectionProbes::ReflectionProbes(std::filesystem::path shaderRoot) : shaderRoo
     ProbeUniforms none{};
     none.params = {0.0f, float(kLevels - 1), 0.0f, 0.0f};
     emptyBlock_ = gl::createBuffer(sizeof(ProbeUniforms), &none);
+    // The placeholder: a cube-map array of the probes' format, mip count and sampling (one probe's 12 layer-faces,
+    // zero). llvmpipe compiles a program for the kind of texture bound to each unit, so a frame without probes that
+    // bound nothing compiled the lighting program a second time (seconds) once the probes came.
+    const int size = 1 << (kLevels - 1);
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
+    placeholder_ = gl::Texture(array);
+    glTextureStorage3D(array, kLevels, GL_RGBA32F, size, size, 12);
+    setCubeSampling(array);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int level = 0; level < kLevels; ++level) glClearTexImage(array, level, GL_RGBA, GL_FLOAT, zero);
 }
 
 ReflectionProbes::~ReflectionProbes() = default;
@@ -119,21 +130,27 @@ void ReflectionProbes::invalidate() {
 }
 
 ReflectionProbes::Update ReflectionProbes::update(const Scene& scene, const GpuScene& gpuScene,
-                                                  Environment& environment, const RenderSettings& settings) {
+                                                  Environment& environment, const RenderSettings& settings,
+                                                  bool mayCapture) {
     ProbeSettings ps = probeSettings(settings);
     std::vector<float> key;
     std::string text;
     buildKey(scene, settings, ps, key, text);
     if (captured_ && key == key_ && text == keyText_) return {};
+    const bool wanted = ps.enabled && ps.maxProbes > 0 && environment.enabled();
+    // Captured against a preview environment they would be lit wrongly and keyed as if right.
+    if (wanted && !environment.refined()) return {.waiting = true};
+    Update timings;
+    Stopwatch clock;
+    const std::string disk = wanted ? diskKey(scene, environment, ps, key) : "";
+    const bool loaded = !disk.empty() && loadFromDisk(disk, scene, ps.faceSize);
+    if (wanted && !loaded && !mayCapture) return {.waiting = true};
     key_ = std::move(key);
     keyText_ = std::move(text);
     captured_ = true;
-    Update timings;
-    probes_.clear();
-    if (!ps.enabled || ps.maxProbes == 0 || !environment.enabled()) return timings;
-    Stopwatch clock;
-    const std::string disk = diskKey(scene, environment, ps);
-    if (!disk.empty() && loadFromDisk(disk, scene, ps.faceSize)) {
+    if (!loaded) probes_.clear();
+    if (!wanted) return timings;
+    if (loaded) {
         timings.ran = timings.fromDisk = true;
         timings.loadMs = clock.elapsedMs();
         last_ = timings;
@@ -306,7 +323,8 @@ size_t arrayFloats(int faceSize, size_t count) {
 }
 }  // namespace
 
-std::string ReflectionProbes::diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& ps) {
+std::string ReflectionProbes::diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& ps,
+                                      const std::vector<float>& settingsKey) {
     if (!diskCacheEnabled() || environment.contentKey().empty()) return "";
     if (shaderHash_.empty()) shaderHash_ = shaderFolderHash(shaderRoot_);
     std::ostringstream key;
@@ -314,7 +332,7 @@ std::string ReflectionProbes::diskKey(const Scene& scene, const Environment& env
     key << "face " << ps.faceSize << " max " << ps.maxProbes << " levels " << kLevels << " | settings";
     // The in-memory key (probe settings, meshes, instances, materials, lights, sky, every common parameter, what
     // update() compares between frames), hashed: its text would grow with the instance count.
-    key << ' ' << cache::contentHash({reinterpret_cast<const char*>(key_.data()), key_.size() * sizeof(float)});
+    key << ' ' << cache::contentHash({reinterpret_cast<const char*>(settingsKey.data()), settingsKey.size() * sizeof(float)});
     key << " | scene " << sceneContentHash(scene) << " | environment " << cache::contentHash(environment.contentKey())
         << " | shaders " << shaderHash_;
     return key.str();
@@ -408,8 +426,8 @@ void ReflectionProbes::storeToDisk(const std::string& key) const {
 
 FrameImage ReflectionProbes::image(bool active) const {
     const bool any = active && !probes_.empty() && specular_;
-    return {.textures = {any ? specular_.id() : 0}, .buffer = any ? probeBlock_.id() : emptyBlock_.id(),
-            .width = faceSize_, .height = faceSize_};
+    if (!any) return {.textures = {placeholder_.id()}, .buffer = emptyBlock_.id(), .width = 0, .height = 0};
+    return {.textures = {specular_.id()}, .buffer = probeBlock_.id(), .width = faceSize_, .height = faceSize_};
 }
 
 void bindProbeInputs(const FrameImage& probes) {

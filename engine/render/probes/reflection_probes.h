@@ -83,18 +83,23 @@ public:
         bool fromDisk = false;                       // read from the disk cache: loadMs, no capture
         double captureMs = 0.0, prefilterMs = 0.0;   // wall clock around glFinish
         double loadMs = 0.0;
+        // Not updated this frame: the environment is still a preview (Environment::refined), or a capture was
+        // needed and `mayCapture` was false. The old probes stand until then; image() should not be published.
+        bool waiting = false;
     };
     static constexpr size_t kMaxCacheFiles = 4;
     static bool diskCacheEnabled();   // GLIMMER_PROBE_CACHE != 0
     // Re-captures and prefilters the probes when anything they see changed since the last capture. The
     // environment must be prepared for `scene`. Leaves the frame uniform blocks bound to its own buffers.
+    // With `mayCapture` false only the disk cache may supply them (Renderer::RefinementPace).
     Update update(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
-                  const RenderSettings& settings);
+                  const RenderSettings& settings, bool mayCapture = true);
     // The next update() captures (or reads the disk cache) again, with a new capture renderer and shader digest:
     // what a fresh ReflectionProbes would do. Called when the renderer rebuilt its programs.
     void invalidate();
-    // FrameResource::ReflectionProbes: the probe array and block; `active` false gives a block with no probes (the
-    // lighting reads the distant environment alone).
+    // FrameResource::ReflectionProbes: the probe array and block, width and height the face size; `active` false (or
+    // no probes) gives a block with no probes (the lighting reads the distant environment alone), a zero placeholder
+    // array of the same kind and width 0.
     FrameImage image(bool active) const;
 
     struct Probe {
@@ -113,7 +118,9 @@ private:
     void capture(const Scene& scene, const GpuScene& gpuScene, Environment& environment,
                  const RenderSettings& settings, const ProbeSettings& probeSettings, Update& timings);
     // The disk cache's key parameters ("" = not cached) and its load / store.
-    std::string diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& probeSettings);
+    // `settingsKey`: buildKey's in-memory key of the probes being looked up.
+    std::string diskKey(const Scene& scene, const Environment& environment, const ProbeSettings& probeSettings,
+                        const std::vector<float>& settingsKey);
     bool loadFromDisk(const std::string& key, const Scene& scene, int faceSize);
     void storeToDisk(const std::string& key) const;
     // Allocates the prefiltered array for `count` probes of `size` and clears it (levels of an unused NDF stay 0).
@@ -124,6 +131,7 @@ private:
     std::unique_ptr<Renderer> renderer_;   // renders the captures (built on the first one)
     std::unique_ptr<CubePrefilter> prefilter_;
     gl::Buffer probeBlock_, emptyBlock_;
+    gl::Texture placeholder_;   // bound while there are no probes (see the constructor)
     gl::Texture specular_, source_;
     int faceSize_ = 0;
     std::vector<Probe> probes_;
