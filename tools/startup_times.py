@@ -3,11 +3,15 @@
 
 For each binary given (e.g. main's build and this one, to compare side by side), runs in turn, interleaved:
   cold: fresh, empty cache folders (GLIMMER_CACHE_DIR and Mesa's MESA_SHADER_CACHE_DIR), then
-  warm: the same folders again,
+  warm: the same folders again, then
+  glimmer-cold: Glimmer's cache emptied, Mesa's shader cache kept (a new scene or environment, or a cleared
+  Glimmer cache, on a machine that ran this build before),
 each with an input script that prints once the first picture is on screen, presses B (the split screen) at 0.5 s
-and quits at 4 s. Reports, per run: the time from the process's start (just before exec) to the first line of the
+and quits at 12 s (after the refinements a cold start runs after its first picture, so that the warm runs
+find everything cached). Reports, per run: the time from the process's start (just before exec) to the first line of the
 window's log, to the loading frame (the binary's own log, where it has one) and to the first picture, and the
-longest frame after B (the split screen's freeze) from `--stats`. Start with the load you report: `uptime`.
+longest frame after it from `--stats` (warm: B's freeze, the split screen's first frame; cold or glimmer-cold:
+the refinements after the first picture, the environment's prefilter or the probes' capture, are longer). Start with the load you report: `uptime`.
 
     tools/startup_times.py [--scene atrium] [--size 1280x720] [--repeat 1] BINARY [BINARY ...]
 """
@@ -20,7 +24,7 @@ import sys
 import tempfile
 import time
 
-SCRIPT = "0 print\n0.5 press b\n3.5 print\n4.0 quit\n"
+SCRIPT = "0 print\n0.5 press b\n11.5 print\n12.0 quit\n"
 
 
 def run(binary, cache, scene, size, workdir):
@@ -63,7 +67,7 @@ def run(binary, cache, scene, size, workdir):
             stats = json.loads(l)
             times = stats["frame_times_ms"]
             if times:
-                result["b_freeze_ms"] = round(max(times), 1)
+                result["longest_frame_ms"] = round(max(times), 1)
                 result["median_frame_ms"] = round(sorted(times)[len(times) // 2], 1)
     result["log_tail"] = [l for _, l in lines if "loading" in l or "cache" in l or "captured" in l][-12:]
     return result
@@ -80,8 +84,12 @@ def main():
     with tempfile.TemporaryDirectory(prefix="glimmer-startup-") as work:
         for r in range(args.repeat):
             caches = {b: tempfile.mkdtemp(dir=work) for b in args.binaries}
-            for kind in ("cold", "warm"):
+            for kind in ("cold", "warm", "glimmer-cold"):
                 for binary in args.binaries:
+                    if kind == "glimmer-cold":   # Glimmer's cache emptied, Mesa's shader cache kept
+                        for entry in os.listdir(caches[binary]):
+                            if entry != "mesa":
+                                os.remove(os.path.join(caches[binary], entry))
                     result = run(os.path.abspath(binary), caches[binary], args.scene, args.size, work)
                     print(json.dumps({"binary": binary, "run": kind, "repeat": r, **result}), flush=True)
     print("load:", os.getloadavg())
