@@ -295,8 +295,8 @@ TEST(ReflectionProbes, DiskCacheGivesTheSameImageAndRejectsDamage) {
 
 // The window's start (Renderer::RefinementPace): its first picture (Deferred) lights with a preview of a new
 // environment and no probes, stores nothing in the disk cache and lists what waits; the frames after it (OnePerFrame)
-// run one refinement each (the environment's prefilter, then the probe capture, then the environment glints) and end
-// on the very image a renderer that does everything in its first frame makes.
+// run one refinement step each (the environment's prefilter one walk a frame, then the probe capture, then the
+// environment glints) and end on the very image a renderer that does everything in its first frame makes.
 TEST(ReflectionProbes, PacedStartPreviewsThenRefinesOneStepAFrame) {
     const std::string dir = test::makeTempDir("paced-start");
     struct Variables {   // what this test sets, restored at its end
@@ -340,12 +340,27 @@ TEST(ReflectionProbes, PacedStartPreviewsThenRefinesOneStepAFrame) {
 
     rig.renderer->setRefinementPace(Renderer::RefinementPace::OnePerFrame);
     std::vector<float> paced;
-    for (size_t frame = 1; frame <= all.size(); ++frame) {
+    // The prefilter one walk a frame ("environment maps k/n" while it lasts), then one step a frame.
+    const int walks = rig.renderer->environment().refineProgress().second;
+    int environmentFrames = 0;
+    for (size_t done = 0; done < all.size();) {
+        ASSERT_LT(environmentFrames, 12) << "the prefilter does not end";
         paced = rig.render({});
         const std::vector<std::string>& waiting = rig.renderer->waitingRefinements();
-        ASSERT_EQ(waiting.size(), all.size() - frame) << "frame " << frame << " did not run exactly one refinement";
-        for (size_t i = 0; i < waiting.size(); ++i) EXPECT_EQ(waiting[i], all[frame + i]);
+        if (!rig.renderer->environment().refined()) {
+            ++environmentFrames;
+            const auto [walked, count] = rig.renderer->environment().refineProgress();
+            EXPECT_EQ(walked, environmentFrames) << "not one walk a frame";
+            ASSERT_EQ(waiting.size(), all.size());
+            EXPECT_EQ(waiting[0], "environment maps " + std::to_string(walked) + "/" + std::to_string(count));
+            continue;
+        }
+        ++done;
+        ASSERT_EQ(waiting.size(), all.size() - done) << "a frame did not run exactly one refinement";
+        for (size_t i = 0; i < waiting.size(); ++i) EXPECT_EQ(waiting[i], all[done + i]);
     }
+    EXPECT_GT(environmentFrames, 1) << "the prefilter ran in one frame";
+    EXPECT_EQ(walks, 1) << "progress before the first walk";
     EXPECT_TRUE(rig.renderer->environment().refined());
     EXPECT_EQ(environmentFiles(), 1) << "the refined maps were not stored";
     EXPECT_EQ(rig.renderer->probes().captures(), 1);

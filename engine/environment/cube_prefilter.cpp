@@ -90,75 +90,86 @@ void CubePrefilter::resample(GLuint source, int sourceCube, int sourceMip, GLuin
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& levels, unsigned ndfMask) {
+CubePrefilter::Job CubePrefilter::begin(GLuint source, int faceSize, std::vector<Level> levels, unsigned ndfMask) {
     // The source cube's faces as a 2D array, so the walk can texelFetch a given face, texel and mip.
     GLuint layers = 0;
     glGenTextures(1, &layers);
     glTextureView(layers, GL_TEXTURE_2D_ARRAY, source, GL_RGBA32F, 0, GLuint(mipCount(faceSize)), 0, 6);
     gl::Texture sourceLayers(layers);
     buildSums(sourceLayers.id(), faceSize);
-
-    gl::Texture scratch;   // groups computed below their size: one cube per lobe (NDF x 4 + i)
-    int scratchSize = 0;
-    auto computedOf = [](const Level& level) {
-        return level.computedSize > 0 ? std::min(level.computedSize, level.size) : level.size;
-    };
-    for (size_t first = 0; first < levels.size();) {
-        // A group: up to kLobeAlphas consecutive levels into the same mip at the same computed size share one walk.
+    Job job{source, faceSize, std::move(levels), ndfMask};
+    // Groups: up to kLobeAlphas consecutive levels into the same mip at the same computed size share one walk.
+    for (size_t first = 0; first < job.levels.size();) {
+        const Level& lead = job.levels[first];
         size_t end = first + 1;
-        while (end < levels.size() && end - first < size_t(kLobeAlphas) && levels[end].target == levels[first].target &&
-               levels[end].mip == levels[first].mip && levels[end].size == levels[first].size &&
-               computedOf(levels[end]) == computedOf(levels[first]))
+        while (end < job.levels.size() && end - first < size_t(kLobeAlphas) && job.levels[end].target == lead.target &&
+               job.levels[end].mip == lead.mip && job.levels[end].size == lead.size &&
+               computedSize(job.levels[end]) == computedSize(lead))
             ++end;
-        const Level& lead = levels[first];
-        int count = int(end - first);
-        int computed = computedOf(lead);
-        bool half = computed < lead.size;   // upsampled from the scratch array
-        if (half && scratchSize != computed) {
-            GLuint array = 0;
-            glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-            scratch = gl::Texture(array);
-            glTextureStorage3D(array, 1, GL_RGBA32F, computed, computed, 6 * 2 * kLobeAlphas);
-            glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-            glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-            scratchSize = computed;
-        }
-        float alphas[kLobeAlphas] = {};
-        GLint layerFaces[2 * kLobeAlphas] = {};
-        for (int i = 0; i < count; ++i) {
-            alphas[i] = levels[first + i].alpha;
-            for (int ndf = 0; ndf < 2; ++ndf)
-                layerFaces[ndf * kLobeAlphas + i] =
-                    half ? 6 * (ndf * kLobeAlphas + i) : levels[first + i].layerFace[ndf];
-        }
-        gl::Program& program = count == 1 ? program1_ : count == 2 ? program2_ : program4_;
-        program.use();
-        glBindTextureUnit(UNIT_ENV_WEIGHTED, weighted_.id());
-        glBindTextureUnit(UNIT_ENV_CENTROID, centroids_.id());
-        if (half) glBindImageTexture(IMAGE_ENV_OUTPUT, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        else glBindImageTexture(IMAGE_ENV_OUTPUT, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glUniform1i(0, computed);
-        glUniform4fv(1, 1, alphas);
-        glUniform1i(2, GLint(ndfMask & 3u));
-        glUniform1i(3, rootMip(faceSize));
-        glUniform1i(4, faceSize);
-        glUniform1f(5, refine());
-        glUniform4iv(6, 2, layerFaces);
-        glUniform1f(8, kHorizonWidth);
-        glUniform1i(9, count);
-        glDispatchCompute(groups(computed), groups(computed), 6);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        if (half)
-            for (int i = 0; i < count; ++i)
-                for (int ndf = 0; ndf < 2; ++ndf)
-                    if (ndfMask & (1u << ndf))
-                        resample(scratch.id(), ndf * kLobeAlphas + i, 0, lead.target, lead.mip, lead.size,
-                                 levels[first + i].layerFace[ndf]);
+        job.groupStarts.push_back(first);
         first = end;
     }
+    job.groupStarts.push_back(job.levels.size());
+    return job;
+}
+
+bool CubePrefilter::step(Job& job) {
+    if (job.done()) return true;
+    const size_t first = job.groupStarts[job.nextGroup], end = job.groupStarts[job.nextGroup + 1];
+    ++job.nextGroup;
+    const Level& lead = job.levels[first];
+    const int count = int(end - first);
+    const int computed = computedSize(lead);
+    const bool half = computed < lead.size;   // upsampled from the scratch array
+    if (half && scratchSize_ != computed) {   // one cube per lobe (NDF x 4 + i)
+        GLuint array = 0;
+        glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
+        scratch_ = gl::Texture(array);
+        glTextureStorage3D(array, 1, GL_RGBA32F, computed, computed, 6 * 2 * kLobeAlphas);
+        glTextureParameteri(array, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(array, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(array, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(array, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        scratchSize_ = computed;
+    }
+    float alphas[kLobeAlphas] = {};
+    GLint layerFaces[2 * kLobeAlphas] = {};
+    for (int i = 0; i < count; ++i) {
+        alphas[i] = job.levels[first + i].alpha;
+        for (int ndf = 0; ndf < 2; ++ndf)
+            layerFaces[ndf * kLobeAlphas + i] = half ? 6 * (ndf * kLobeAlphas + i) : job.levels[first + i].layerFace[ndf];
+    }
+    gl::Program& program = count == 1 ? program1_ : count == 2 ? program2_ : program4_;
+    program.use();
+    glBindTextureUnit(UNIT_ENV_WEIGHTED, weighted_.id());
+    glBindTextureUnit(UNIT_ENV_CENTROID, centroids_.id());
+    if (half) glBindImageTexture(IMAGE_ENV_OUTPUT, scratch_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    else glBindImageTexture(IMAGE_ENV_OUTPUT, lead.target, lead.mip, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glUniform1i(0, computed);
+    glUniform4fv(1, 1, alphas);
+    glUniform1i(2, GLint(job.ndfMask & 3u));
+    glUniform1i(3, rootMip(job.faceSize));
+    glUniform1i(4, job.faceSize);
+    glUniform1f(5, refine());
+    glUniform4iv(6, 2, layerFaces);
+    glUniform1f(8, kHorizonWidth);
+    glUniform1i(9, count);
+    glDispatchCompute(groups(computed), groups(computed), 6);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (half)
+        for (int i = 0; i < count; ++i)
+            for (int ndf = 0; ndf < 2; ++ndf)
+                if (job.ndfMask & (1u << ndf))
+                    resample(scratch_.id(), ndf * kLobeAlphas + i, 0, lead.target, lead.mip, lead.size,
+                             job.levels[first + i].layerFace[ndf]);
+    if (!job.done()) return false;
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return true;
+}
+
+void CubePrefilter::run(GLuint source, int faceSize, const std::vector<Level>& levels, unsigned ndfMask) {
+    Job job = begin(source, faceSize, levels, ndfMask);
+    while (!step(job)) {}
 }
 
 void CubePrefilter::runMipChain(GLuint source, int faceSize, GLuint target, int levels, int firstLayer,

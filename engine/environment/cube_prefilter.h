@@ -8,6 +8,7 @@
 #pragma once
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <vector>
 
@@ -45,6 +46,21 @@ public:
     // mip chain of faceSize faces. Up to four consecutive levels with the same target, mip and computed size (in
     // ascending alpha) share one walk of the quadtree. Ends with the image/texture barrier.
     void run(GLuint source, int faceSize, const std::vector<Level>& levels, unsigned ndfMask);
+    // run() in steps, one walk (group of levels) a step, so a caller can spread it over frames: begin() fills the
+    // sums of `source` (which must not change until the job is done, nor may another job of this prefilter run in
+    // between), each step() dispatches the next group and returns true once every level is written.
+    struct Job {
+        GLuint source = 0;
+        int faceSize = 0;
+        std::vector<Level> levels;
+        unsigned ndfMask = 0;
+        std::vector<size_t> groupStarts;   // first level of each group, then levels.size()
+        size_t nextGroup = 0;
+        bool done() const { return nextGroup + 1 >= groupStarts.size(); }
+        int groupCount() const { return int(groupStarts.size()) - 1; }
+    };
+    Job begin(GLuint source, int faceSize, std::vector<Level> levels, unsigned ndfMask);
+    bool step(Job& job);
     // Levels 1 .. levels-1 of `target` (a cube-map array whose level 0 has the source's face size, level k holding
     // sqrt(alpha) = k / (levels - 1)) at layer-faces firstLayer + 6 * ndf; level 0 is left to the caller.
     void runMipChain(GLuint source, int faceSize, GLuint target, int levels, int firstLayer, unsigned ndfMask);
@@ -62,6 +78,11 @@ private:
     gl::Texture weighted_;    // 2D array, 6 layers: radiance x solid angle
     gl::Texture centroids_;   // 2D array, 6 layers: rgb luminance x solid angle x direction, a solid angle
     int sumsSize_ = 0;
+    gl::Texture scratch_;   // groups computed below their size: one cube per lobe (NDF x kLobeAlphas + i)
+    int scratchSize_ = 0;
+    static int computedSize(const Level& level) {
+        return level.computedSize > 0 ? std::min(level.computedSize, level.size) : level.size;
+    }
 };
 
 }  // namespace glimmer

@@ -161,6 +161,7 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
     }
     if (key.str() == activeKey_) return;
     contentKey_.clear();
+    prefilterJob_.reset();   // its source is about to go
 
     if (spec.kind == EnvironmentSpec::Kind::None) {
         sourceCube_.reset();
@@ -238,10 +239,19 @@ void Environment::update(const std::string& text, const SunDescription& sun, con
 }
 
 void Environment::refine() {
-    if (refined_) return;
+    while (!refineStep()) {}
+}
+
+bool Environment::refineStep() {
+    if (refined_) return true;
     Stopwatch clock;
-    prefilter();
-    finishAndTime(timings_.prefilterMs, clock);
+    if (!prefilterJob_) prefilterJob_ = prefilter_->begin(sourceCube_.id(), kFaceSize, prefilterLevels(), 0x3u);
+    const bool done = prefilter_->step(*prefilterJob_);
+    glFinish();
+    timings_.prefilterMs += clock.elapsedMs();
+    if (!done) return false;
+    prefilterJob_.reset();
+    clock.restart();
     if (!refineCacheParameters_.empty()) {
         EnvironmentCache cache(cache::defaultCacheDir(), refineCacheParameters_);
         timings_.cacheStored = cache.store({sourceCube_.id(), specular_.id(), specularFine_.id(), brdfLut_.id()}, sh_);
@@ -254,6 +264,13 @@ void Environment::refine() {
     log::info("environment ", name, ": load ", timings_.loadMs, " ms, cubemap ", timings_.convertMs, " ms, mips ",
               timings_.mipsMs, " ms, prefilter ", timings_.prefilterMs, " ms, irradiance SH ",
               timings_.irradianceMs, " ms, BRDF table ", timings_.brdfLutMs, " ms, total ", timings_.totalMs, " ms");
+    return true;
+}
+
+std::pair<int, int> Environment::refineProgress() const {
+    if (refined_) return {1, 1};
+    if (!prefilterJob_) return {0, 1};
+    return {int(prefilterJob_->nextGroup), prefilterJob_->groupCount()};
 }
 
 void Environment::fillPreview() {
@@ -448,7 +465,7 @@ int computedFaceSize(float alpha, int size) {
 }
 }  // namespace
 
-void Environment::prefilter() {
+std::vector<CubePrefilter::Level> Environment::prefilterLevels() const {
     std::vector<CubePrefilter::Level> levels;
     for (int rung = 1; rung <= kRungs; ++rung) {
         CubePrefilter::Level level;
@@ -460,7 +477,7 @@ void Environment::prefilter() {
         level.computedSize = computedFaceSize(level.alpha, level.size);
         levels.push_back(level);
     }
-    prefilter_->run(sourceCube_.id(), kFaceSize, levels, 0x3u);
+    return levels;
 }
 
 void Environment::projectIrradiance() {

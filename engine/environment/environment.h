@@ -15,7 +15,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -105,6 +107,12 @@ public:
     bool refined() const { return refined_; }
     // Prefilters the specular rungs and stores the maps in the disk cache; nothing when already refined.
     void refine();
+    // refine() in steps of one prefilter walk (CubePrefilter::step: 0.2-1 s each on llvmpipe, where the whole is
+    // 1.2-3 s), for a window that spreads it over frames; true once refined. The rungs not yet walked keep the
+    // preview.
+    bool refineStep();
+    // Walks done and their count while refining ({0, 1} before the first step, {1, 1} when refined).
+    std::pair<int, int> refineProgress() const;
     bool enabled() const { return enabled_; }
     // What the active maps were built from, as the disk cache keys them (the image's bytes or the procedural sky's
     // sun, the map sizes, the shaders' sources): "" for none or with the cache off (GLIMMER_ENV_CACHE=0). Caches of
@@ -133,7 +141,7 @@ private:
     void buildBrdfLut();
     void buildMaps(const EnvironmentSpec& spec, const SunDescription& sun);
     void fillProceduralSky(const SunDescription& sun, bool drawSun);
-    void prefilter();
+    std::vector<CubePrefilter::Level> prefilterLevels() const;   // every rung, for CubePrefilter::begin
     void fillPreview();
     void projectIrradiance();
 
@@ -148,6 +156,7 @@ private:
     bool enabled_ = false;
     bool refined_ = true;
     std::string refineCacheParameters_;   // the disk cache key refine() stores under ("": not cached)
+    std::optional<CubePrefilter::Job> prefilterJob_;   // refineStep()'s walks in progress
     EnvironmentTimings timings_;
 };
 

@@ -239,10 +239,16 @@ void Renderer::prepareEnvironment(const Scene& scene, const std::string& flag, R
     if (!ownEnvironment_) return;
     // Paced: a new environment missing from the disk cache comes as a preview first (Environment::update).
     ownEnvironment_->update(scene.environment, sunFromScene(scene), flag, refinementPace_ != RefinementPace::AllAtOnce);
+    // Paced, one prefilter walk a frame (a few hundred ms each on llvmpipe rather than one freeze of seconds).
     if (!ownEnvironment_->refined() && budget.take("environment maps")) {
         Stopwatch clock;
-        ownEnvironment_->refine();
+        const bool done = refinementPace_ == RefinementPace::AllAtOnce ? (ownEnvironment_->refine(), true)
+                                                                          : ownEnvironment_->refineStep();
         recordOnDemand("environment.prefilter", clock.elapsedMs());
+        if (!done) {
+            const auto [walked, walks] = ownEnvironment_->refineProgress();
+            budget.wait("environment maps " + std::to_string(walked) + "/" + std::to_string(walks));
+        }
     }
 }
 
