@@ -20,7 +20,7 @@ void EnvironmentGlintsPass::prepare(PrepareContext& context) {
         return;
     }
     // The probes as ProbesPass published them this frame: a new capture is a new array (a new serial); the count
-    // is its layers / 12 (2 NDFs x 6 faces per probe). Width 0: none (a placeholder array).
+    // is its layers / 12 (2 NDFs x 6 faces per probe). Width 0: none (the empty zero array).
     const FrameImage& probes = context.resources.get(FrameResource::ReflectionProbes);
     EnvironmentGlints::Probes probeData;
     if (GLuint array = probes.texture(); array && probes.width > 0) {

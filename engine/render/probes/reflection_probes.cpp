@@ -107,13 +107,13 @@ ReflectionProbes::ReflectionProbes(std::filesystem::path shaderRoot) : shaderRoo
     ProbeUniforms none{};
     none.params = {0.0f, float(kLevels - 1), 0.0f, 0.0f};
     emptyBlock_ = gl::createBuffer(sizeof(ProbeUniforms), &none);
-    // The placeholder: a cube-map array of the probes' format, mip count and sampling (one probe's 12 layer-faces,
+    // The empty array: a cube-map array of the probes' format, mip count and sampling (one probe's 12 layer-faces,
     // zero). llvmpipe compiles a program for the kind of texture bound to each unit, so a frame without probes that
     // bound nothing compiled the lighting program a second time (seconds) once the probes came.
     const int size = 1 << (kLevels - 1);
     GLuint array = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &array);
-    placeholder_ = gl::Texture(array);
+    emptyArray_ = gl::Texture(array);
     glTextureStorage3D(array, kLevels, GL_RGBA32F, size, size, 12);
     setCubeSampling(array);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -426,7 +426,7 @@ void ReflectionProbes::storeToDisk(const std::string& key) const {
 
 FrameImage ReflectionProbes::image(bool active) const {
     const bool any = active && !probes_.empty() && specular_;
-    if (!any) return {.textures = {placeholder_.id()}, .buffer = emptyBlock_.id(), .width = 0, .height = 0};
+    if (!any) return {.textures = {emptyArray_.id()}, .buffer = emptyBlock_.id(), .width = 0, .height = 0};
     return {.textures = {specular_.id()}, .buffer = probeBlock_.id(), .width = faceSize_, .height = faceSize_};
 }
 

@@ -98,8 +98,8 @@ public:
     // what a fresh ReflectionProbes would do. Called when the renderer rebuilt its programs.
     void invalidate();
     // FrameResource::ReflectionProbes: the probe array and block, width and height the face size; `active` false (or
-    // no probes) gives a block with no probes (the lighting reads the distant environment alone), a zero placeholder
-    // array of the same kind and width 0.
+    // no probes) gives a block with no probes (the lighting reads the distant environment alone), a zero array of
+    // the same kind and width 0.
     FrameImage image(bool active) const;
 
     struct Probe {
@@ -131,7 +131,7 @@ private:
     std::unique_ptr<Renderer> renderer_;   // renders the captures (built on the first one)
     std::unique_ptr<CubePrefilter> prefilter_;
     gl::Buffer probeBlock_, emptyBlock_;
-    gl::Texture placeholder_;   // bound while there are no probes (see the constructor)
+    gl::Texture emptyArray_;   // bound while there are no probes (see the constructor)
     gl::Texture specular_, source_;
     int faceSize_ = 0;
     std::vector<Probe> probes_;
