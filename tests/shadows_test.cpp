@@ -426,6 +426,38 @@ TEST(Shadows, StillCameraRendersNoShadowViewAfterTheFirstFrame) {
     EXPECT_EQ(rig.renderer->shadowMaps().stats().sunViewsRendered, 3);
 }
 
+// The shadow mask compiles each layer's program for the filters of its four slots (render/shadows/shadow_mask_pass.h):
+// a slot must get the filter the generic shader would pick from the light (cascades for the sun, PCF for a point or
+// spot light without a radius, soft shadows for one with a radius and for area lights), in the GPU's light order
+// (punctual lights first, then area lights), and empty slots none. The other tests of this file and
+// AreaLights.SoftShadowPenumbraGrowsWithTheLightSize check each filter's image.
+TEST(Shadows, MaskLayersCompileTheFiltersOfTheirLights) {
+    Light sphere;
+    sphere.type = LightType::Sphere;
+    sphere.vector = {-1.0f, 3.0f, 0.0f};
+    sphere.radius = 0.2f;
+    sphere.intensity = 50.0f;
+    Light point;
+    point.type = LightType::Point;
+    point.vector = {0.5f, 3.0f, 0.5f};
+    point.intensity = 4.0f;
+    Light sizedPoint = point;
+    sizedPoint.vector.x = -0.5f;
+    sizedPoint.radius = 0.1f;
+    Light spot = point;
+    spot.type = LightType::Spot;
+    spot.spotDirection = {0.0f, -1.0f, 0.0f};
+    spot.outerConeAngle = 0.5f;
+    ShadowRig rig({{-0.5, 1.0, -0.6}, {0.5, 1.6, 0.6}}, sunAt(45.0f, 30.0f));
+    rig.scene.lights = {sphere, rig.scene.lights[0], point, sizedPoint, spot};
+    rig.render(RenderSettings{}, rig.scene.cameras[0]);
+    const ShadowMaps& maps = rig.renderer->shadowMaps();
+    ASSERT_EQ(maps.maskLayers(), 2);
+    const int cascades = int(ShadowFilter::Cascades), pcf = int(ShadowFilter::Pcf), pcss = int(ShadowFilter::Pcss);
+    EXPECT_EQ(maps.maskLayerFilters(0), glm::ivec4(cascades, pcf, pcss, pcf)) << "sun, point, sized point, spot";
+    EXPECT_EQ(maps.maskLayerFilters(1), glm::ivec4(pcss, 0, 0, 0)) << "the sphere light last, then empty slots";
+}
+
 TEST(Shadows, PointLightCubeShadowMatchesTheCentralProjectionAcrossFaces) {
     // A lantern 1.2 m above the plane and a box beside it: the shadow on the ground runs from the -y face of the
     // cube (below the light) into the +x face (beyond |x| = 1.2 m).

@@ -20,6 +20,15 @@ const int SHADOW_NONE = 0;
 const int SHADOW_CASCADES = 1;
 const int SHADOW_CUBE = 2;
 const int SHADOW_SPOT = 3;
+// How a shadow-mask slot filters its light (render/shadows/shadow_maps.h ShadowFilter): the shadow mask's program is
+// compiled for the filters of its layer's four slots (render/shadows/shadow_mask_pass.cpp), since llvmpipe runs both
+// sides of every branch: a generic program paid for the cascades', the PCF's and the soft shadows' lookups at every
+// light. SHADOW_FILTER_ANY decides from the light's record at run time (every path present).
+const int SHADOW_FILTER_ANY = -1;
+const int SHADOW_FILTER_NONE = 0;       // an empty slot
+const int SHADOW_FILTER_CASCADES = 1;   // the sun: 4 x 4 PCF in its cascade
+const int SHADOW_FILTER_PCF = 2;        // a point or spot light without a size: 4 x 4 PCF in its view
+const int SHADOW_FILTER_PCSS = 3;       // a light with a size: percentage-closer soft shadows in its view
 
 layout(std140, binding = BINDING_SHADOWS) uniform ShadowBlock {
     mat4 u_shadowViews[MAX_SHADOW_VIEWS];      // world -> clip of each view
@@ -105,15 +114,22 @@ vec3 shadowReceiver(vec3 position, vec3 normal, vec3 towardLight, float texel) {
 
 // Visibility in [0, 1] of light `index` (its vector: position of a point light) at `position` with unit
 // `normal`; 1 for lights without a shadow map. `size`: the light's radius in metres (0: a point; soft shadows).
-float lightVisibility(int index, vec3 lightVector, float size, vec3 position, vec3 normal, vec3 towardLight) {
-    if (u_shadowFilter.w < 0.5 || index >= MAX_SHADOW_LIGHTS) return 1.0;
+// `kind`: SHADOW_FILTER_* of the light, a constant where the caller knows it (the branches on it then compile
+// away), or SHADOW_FILTER_ANY.
+float lightVisibility(int kind, int index, vec3 lightVector, float size, vec3 position, vec3 normal,
+                      vec3 towardLight) {
+    if (kind == SHADOW_FILTER_NONE || u_shadowFilter.w < 0.5 || index >= MAX_SHADOW_LIGHTS) return 1.0;
     ivec4 record = u_shadowLights[index];
+    if (kind == SHADOW_FILTER_ANY)
+        kind = record.x == SHADOW_CASCADES ? SHADOW_FILTER_CASCADES
+               : record.x == SHADOW_CUBE || record.x == SHADOW_SPOT ? (size > 0.0 ? SHADOW_FILTER_PCSS : SHADOW_FILTER_PCF)
+               : SHADOW_FILTER_NONE;
     float radius = u_shadowFilter.x;
     // First the view and the receiver's map coordinates (arithmetic only), then one filtered lookup.
     int view = -1;
     vec3 coord = vec3(0.0);   // uv, depth
-    if (record.x == SHADOW_CASCADES) {
-        // The first cascade whose square holds the point with the filter's reach to spare (the cascades are
+    if (kind == SHADOW_FILTER_CASCADES) {
+        // The first cascade whose square holds the point with the kind's reach to spare (the cascades are
         // ordered near to far and cached squares may be larger than needed).
         float guard = (radius + 2.0) * u_shadowMapSizes.x;
         for (int k = record.z - 1; k >= 0; --k) {
@@ -129,8 +145,8 @@ float lightVisibility(int index, vec3 lightVector, float size, vec3 position, ve
         if (view < 0) return 1.0;   // beyond shadow.distance
         return shadowPcfSun(coord.xy, u_shadowViewInfo[view].y, coord.z, u_shadowMapSizes.x, radius);
     }
-    if (record.x == SHADOW_CUBE || record.x == SHADOW_SPOT) {
-        // A cube: the face of the major axis (faces are a little wider than 90 degrees: the filter stays on the
+    if (kind == SHADOW_FILTER_PCF || kind == SHADOW_FILTER_PCSS) {
+        // A cube: the face of the major axis (faces are a little wider than 90 degrees: the kind stays on the
         // face). A spot: its one view. Both are perspective views whose clip w is the view depth.
         vec3 d = position - lightVector;
         vec3 a = abs(d);
@@ -141,9 +157,10 @@ float lightVisibility(int index, vec3 lightVector, float size, vec3 position, ve
         vec4 clip = u_shadowViews[view] * vec4(p, 1.0);
         vec3 ndc = clip.xyz / max(clip.w, 1e-4);   // behind a spot: finite, and outside the map below
         vec2 uv = ndc.xy * 0.5 + 0.5;
-        float shadow = size > 0.0 ? shadowPcssLocal(uv, u_shadowViewInfo[view].y, ndc.z, clip.w, u_shadowViewInfo[view].x,
-                                                    size, radius)
-                                  : shadowPcfLocal(uv, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
+        float shadow = kind == SHADOW_FILTER_PCSS
+                           ? shadowPcssLocal(uv, u_shadowViewInfo[view].y, ndc.z, clip.w, u_shadowViewInfo[view].x,
+                                             size, radius)
+                           : shadowPcfLocal(uv, u_shadowViewInfo[view].y, ndc.z, u_shadowMapSizes.y, radius);
         // Outside a spot's view (beyond its outer cone, where it sends no light) nothing is shadowed.
         bool inView = clip.w > 1e-4 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
         return inView ? shadow : 1.0;

@@ -132,6 +132,7 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
                                     glm::ivec4(kShadowNone, 0, 0, -1));
     slots_ = 0;
     slotLights_.clear();
+    slotFilters_.clear();
     if (!settings_.enabled) {
         suns_.clear();
         locals_.clear();
@@ -184,6 +185,7 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
         if (light.type == LightType::Directional && directional < suns_.size()) {
             records[i] = {kShadowCascades, int(views_.size()), settings_.cascades, slots_++};
             slotLights_.push_back(int(i));
+            slotFilters_.push_back(ShadowFilter::Cascades);
             fitSun(suns_[directional], light.vector, scene, gpuScene, camera, aspect,
                    int(directional) * settings_.cascades);
             ++directional;
@@ -192,6 +194,9 @@ void ShadowMaps::prepare(const Scene& scene, const GpuScene& gpuScene, const Cam
             records[i] = {state.viewCount == 1 ? kShadowSpot : kShadowCube, int(views_.size()), state.viewCount,
                           slots_++};
             slotLights_.push_back(int(i));
+            // The size the mask's shader filters with: the light's GPU record (a point or spot light's radius, an
+            // area light's equivalent disk).
+            slotFilters_.push_back(gpuLight(light).spotOffsetRange.z > 0.0f ? ShadowFilter::Pcss : ShadowFilter::Pcf);
             fitLocal(state, light, localLayer);
             localLayer += state.viewCount;
             ++local;
@@ -294,6 +299,15 @@ void ShadowMaps::upload(const std::vector<glm::ivec4>& lightRecords) {
     for (int slot = 0; slot < slots_; ++slot) data.slotLights[slot / 4][slot % 4] = slotLights_[size_t(slot)];
     data.soft = {kLocalNearPlane, kMaxPenumbraTexels, 0.0f, 0.0f};
     glNamedBufferSubData(block_.id(), 0, sizeof(data), &data);
+}
+
+glm::ivec4 ShadowMaps::maskLayerFilters(int layer) const {
+    glm::ivec4 filters(int(ShadowFilter::None));
+    for (int c = 0; c < 4; ++c) {
+        const size_t slot = size_t(4 * layer + c);
+        if (slot < slotFilters_.size()) filters[c] = int(slotFilters_[slot]);
+    }
+    return filters;
 }
 
 void ShadowMaps::ensureMask(int width, int height) {

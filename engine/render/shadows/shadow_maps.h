@@ -67,6 +67,9 @@ constexpr float kLocalNearPlane = 0.05f;
 constexpr float kMaxPenumbraTexels = 16.0f;
 
 enum class ShadowArray : int { Sun = 0, Local = 1 };
+// How the shadow mask filters a slot's light (shaders/shadows/shadows.glsl SHADOW_FILTER_*): the sun's cascades,
+// PCF in a point or spot light's view, soft shadows (PCSS) for a light with a size.
+enum class ShadowFilter : int { None = 0, Cascades = 1, Pcf = 2, Pcss = 3 };
 
 struct ShadowView {
     ShadowArray array = ShadowArray::Sun;
@@ -101,6 +104,9 @@ public:
     GLuint maskFramebuffer(int layer);
     int maskStep() const { return settings_.halfResMask ? 2 : 1; }
     int maskLayers() const { return (slots_ + 3) / 4; }
+    // The filters of mask layer `layer`'s four slots (ShadowFilter; None past the last slot): its program is
+    // compiled for them (render/shadows/shadow_mask_pass.cpp).
+    glm::ivec4 maskLayerFilters(int layer) const;
     glm::ivec2 maskSize() const { return maskSize_; }
     // Forgets every cached map (the next prepare() marks every view dirty): after the depth program was rebuilt.
     void invalidate() { contentKey_ = 0; }
@@ -159,6 +165,7 @@ private:
     int maskTextureLayers_ = 0;
     int slots_ = 0;                          // shadowed lights this frame
     std::vector<int> slotLights_;            // light index of each slot
+    std::vector<ShadowFilter> slotFilters_;  // filter of each slot
     gl::Buffer block_;
     Stats stats_;
 };

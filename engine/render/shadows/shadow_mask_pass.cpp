@@ -7,12 +7,35 @@
 namespace glimmer {
 
 ShadowMaskPass::ShadowMaskPass(const std::filesystem::path& shaderRoot, std::shared_ptr<ShadowMaps> shadows)
-    : program_(shaderRoot,
-               {"shadow_mask", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "shadows/shadow_mask.frag"}}}),
-      shadows_(std::move(shadows)) {}
+    : shaderRoot_(shaderRoot), shadows_(std::move(shadows)) {
+    // The sun alone, the most common case, built now so that a broken shader fails at construction.
+    programFor(glm::ivec4(int(ShadowFilter::Cascades), 0, 0, 0));
+}
+
+gl::Program& ShadowMaskPass::programFor(const glm::ivec4& filters) {
+    const std::string value = "ivec4(" + std::to_string(filters.x) + ", " + std::to_string(filters.y) + ", " +
+                              std::to_string(filters.z) + ", " + std::to_string(filters.w) + ")";
+    std::unique_ptr<gl::Program>& program = programs_[value];
+    if (!program)
+        program = std::make_unique<gl::Program>(
+            shaderRoot_, gl::ProgramDesc{"shadow_mask",
+                                         {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
+                                          {GL_FRAGMENT_SHADER, "shadows/shadow_mask.frag"}},
+                                         {"SHADOW_MASK_FILTERS " + value}});
+    return *program;
+}
+
+std::vector<gl::Program*> ShadowMaskPass::programs() {
+    std::vector<gl::Program*> all;
+    for (auto& [filters, program] : programs_) all.push_back(program.get());
+    return all;
+}
 
 void ShadowMaskPass::prepare(PrepareContext& context) {
-    if (shadows_->settings().enabled && !context.blendSample) shadows_->ensureMask(context.view.width, context.view.height);
+    if (shadows_->settings().enabled && !context.blendSample) {
+        shadows_->ensureMask(context.view.width, context.view.height);
+        for (int layer = 0; layer < shadows_->maskLayers(); ++layer) programFor(shadows_->maskLayerFilters(layer));
+    }
     context.resources.publish(FrameResource::ShadowMask, shadows_->maskImage());
 }
 
@@ -30,9 +53,10 @@ void ShadowMaskPass::execute(const FrameContext& frame) {
         const GLuint framebuffer = shadows_->maskFramebuffer(layer);
         const glm::ivec2 size = shadows_->maskSize();
         gl::fullscreenState(framebuffer, size.x, size.y).apply();
-        program_.use();
+        const gl::Program& program = programFor(shadows_->maskLayerFilters(layer));
+        program.use();
         bindShadowInputs(maps, {});
-        glProgramUniform1i(program_.id(), 0, layer);
+        glProgramUniform1i(program.id(), 0, layer);
         glBindTextureUnit(UNIT_GBUFFER_NORMAL_ALPHA, gbuffer.texture(UNIT_GBUFFER_NORMAL_ALPHA - UNIT_GBUFFER_FIRST));
         glBindTextureUnit(UNIT_GBUFFER_DEPTH, depth);
         glBindVertexArray(frame.emptyVao);
