@@ -146,7 +146,8 @@ int probeAt(vec3 position, out float weight) {
     float bestVolume = 3.4e38;
     weight = 0.0;
     int count = int(u_probeParams.x + 0.5);
-    for (int i = 0; i < count; ++i) {
+    int i = 0;
+    if (count > 0) do {   // tested at the bottom: lights/ltc.glsl ltcLoopCount; `continue` goes to the test
         vec3 lo = u_probes[i].influenceMin.xyz, hi = u_probes[i].influenceMax.xyz;
         if (any(lessThan(position, lo)) || any(greaterThan(position, hi))) continue;
         vec3 extent = hi - lo;
@@ -156,7 +157,7 @@ int probeAt(vec3 position, out float weight) {
         best = i;
         bestVolume = volume;
         weight = clamp(min(inside.x, min(inside.y, inside.z)) / max(u_probes[i].position.w, 1e-4), 0.0, 1.0);
-    }
+    } while (++i < count);
     return best;
 }
 

@@ -344,8 +344,12 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
 #endif
     int areaLightCount = int(u_exposure.w);   // the last ones (render/gpu_scene.h)
     // Punctual and directional lights. Area lights follow in a loop of their own: llvmpipe executes both sides of a
-    // branch, so one loop would make every light pay for the LTC integrals.
-    for (int i = 0; i < lightCount - areaLightCount; ++i) {
+    // branch, so one loop would make every light pay for the LTC integrals. The loops of this function test their
+    // condition at the bottom (lights/ltc.glsl ltcLoopCount: a loop tested at its top cost llvmpipe one more pass
+    // through its body); `continue` goes to that test.
+    int punctualCount = lightCount - areaLightCount;
+    int i = 0;
+    if (punctualCount > 0) do {
         vec3 towardLight, irradiance;
         lightIncidence(u_lights[i], p.position, towardLight, irradiance);
         vec3 wi = worldToShading * towardLight;
@@ -394,7 +398,7 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
         if (p.glinty) sum.glintPart += specular * irradiance * wi.z;
 #endif
         radiance += (diffuseAlbedo * INV_PI + specular) * irradiance * wi.z;
-    }
+    } while (++i < punctualCount);
 
     // Area lights (lights/area_light.glsl): Lambertian emitters of radiance L; diffuse = albedo x L x their form
     // factor, specular = L x (f0 A + B) x the specular LTC's integral over them (Heitz et al. 2016, Eq. 7 and
@@ -416,17 +420,19 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
         // left, so a light that none of the group's pixels sees costs only this test, not its integrals.
         for (int word = firstArea; word < lightCount; word += 32) {
             uint pending = 0u;
-            for (int i = word; i < min(word + 32, lightCount); ++i) {
-                bool reaches = areaLightReaches(u_lights[i], p.position, s.n, coatN);
+            int last = min(word + 32, lightCount);
+            int candidate = word;
+            do {
+                bool reaches = areaLightReaches(u_lights[candidate], p.position, s.n, coatN);
 #ifdef SHADOWS
-                reaches = reaches && maskedLightVisibility(i, maskVisibility) > 0.0;
+                reaches = reaches && maskedLightVisibility(candidate, maskVisibility) > 0.0;
 #endif
-                if (reaches) pending |= 1u << uint(i - word);
-            }
-            while (pending != 0u) {
+                if (reaches) pending |= 1u << uint(candidate - word);
+            } while (++candidate < last);
+            if (pending != 0u) do {
                 int bit = findLSB(pending);
                 pending &= pending - 1u;
-                int i = word + bit;
+                i = word + bit;
                 AreaLightGeometry g = areaLightGeometry(u_lights[i], p.position, ltc.toFrame);
 #ifdef SHADOWS
                 float visibility = maskedLightVisibility(i, maskVisibility);
@@ -441,9 +447,12 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
                 bool sphere = g.sinSigma2 > 0.0;
                 float integrals[2];
                 integrals[0] = sphere ? ltcCapCosine(g.sinSigma2, dot(g.towardCentre, s.n)) : 0.0;
-                for (int k = sphere ? 1 : 0; k < ltcLoopCount(2); ++k)
+                int k = sphere ? 1 : 0;
+                do {
                     integrals[k] = ltcAreaIntegral(g.shape, g.centre, g.halfU, g.halfV,
                                                    k == 0 ? mat3(1.0) : ltc.invSpecular);
+                    ++k;
+                } while (k < ltcLoopCount(2));
                 float diffuse = integrals[0];
                 float specularIntegral = integrals[1];
                 vec3 specular = specularAlbedo * specularIntegral;
@@ -469,7 +478,7 @@ LightSum shadeLights(PixelSurface p, GlintPixel glint, mat3 worldToShading, vec3
                     lightIncidence(u_lights[i], p.position, towardLight, irradiance);
                     coatRadiance += coat.weight * clearcoatLobeCosine(coat, towardLight, toEye) * irradiance * visibility;
                 }
-            }
+            } while (pending != 0u);
         }
     }
     return sum;

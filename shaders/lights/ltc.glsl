@@ -29,7 +29,10 @@ struct LtcPixel {
 
 // A loop bound the compiler cannot fold (u_viewport.x, the frame's width, is never negative; common/frame.glsl): the
 // clipping and edge loops below stay loops instead of being unrolled at every call site, which made llvmpipe's
-// compile of the lighting program seconds longer.
+// compile of the lighting program seconds longer. Such loops are written do-while where they run at least once:
+// llvmpipe runs a loop's body under its execution mask, and a loop tested at its top cost one more pass through the
+// body (with every pixel masked off) than the same loop tested at its bottom (issue 39: the lighting pass 0.86x on
+// the atrium's court in five interleaved pairs, lighting.frag's light loops and the two below).
 int ltcLoopCount(int n) { return u_viewport.x >= 0 ? n : 0; }
 
 // M^-1 from a table entry (a, b, c, d) = [[a, 0, b], [0, 1, 0], [c, 0, d]] (GLSL matrices are column-major).
@@ -74,17 +77,21 @@ float ltcQuadCosine(vec3 q0, vec3 q1, vec3 q2, vec3 q3) {
     vec3 q[4] = vec3[4](q0, q1, q2, q3);
     vec3 c[6];
     int n = 0;
-    for (int i = 0; i < ltcLoopCount(4); ++i) {
-        vec3 a = q[i], b = q[(i + 1) & 3];
+    int e = 0;
+    do {
+        vec3 a = q[e], b = q[(e + 1) & 3];
         if (a.z >= 0.0 && n < 6) c[n++] = a;
         if ((a.z >= 0.0) != (b.z >= 0.0) && n < 6) c[n++] = a + (a.z / (a.z - b.z)) * (b - a);
-    }
+        ++e;
+    } while (e < ltcLoopCount(4));
     if (n < 3) return 0.0;
     float sum = 0.0;
-    for (int i = 0; i < min(n, ltcLoopCount(6)); ++i) {
+    int i = 0;
+    do {
         vec3 a = normalize(c[i]), b = normalize(c[i + 1 < n ? i + 1 : 0]);
         sum += ltcThetaOverSin(dot(a, b)) * cross(a, b).z;
-    }
+        ++i;
+    } while (i < min(n, ltcLoopCount(6)));
     return abs(sum) * (0.5 * INV_PI);
 }
 

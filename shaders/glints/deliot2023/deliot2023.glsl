@@ -310,7 +310,8 @@ float deliotCount(GlintPixel px, vec3 h, float p) {
     vec4 angularWeight = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
     float logMiss = deliotLogMiss(p);   // Eq. 16's log(1 - p): once per light
     float count = 0.0;
-    for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
+    int v = 0;
+    do {   // tested at the bottom (lights/ltc.glsl ltcLoopCount: a top-tested loop cost llvmpipe one more pass)
         // Eq. 10 + 18: this grid vertex's share w_i N_i of the footprint's facets, drawn from the gated binomial
         // with the random numbers of each of the 4 angular cells (the law's parameters are shared by the 4 draws).
         DeliotBinomialLaw law = deliotBinomialLaw(px.trials[v], p, logMiss, px.softGate);
@@ -322,7 +323,7 @@ float deliotCount(GlintPixel px, vec3 h, float p) {
         }
         g_deliotEvaluations += 4;
         count += px.countWeight[v] * vertexCount;
-    }
+    } while (++v < glintLoopCount(DELIOT_VERTICES));
     return count;
 }
 
@@ -387,7 +388,8 @@ float glintEnvironmentFactor(GlintPixel px, GlintSurface s, GlintEnvironment env
     if (!(expected > 0.0)) return 1.0;
     Kk25Tree tree = kk25Tree(p, env.levels);   // the splits' probabilities and logs: once per pixel
     float D[8] = float[8](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for (int v = 0; v < glintLoopCount(DELIOT_VERTICES); ++v) {
+    int v = 0;
+    do {   // tested at the bottom, as deliotCount's; `continue` goes to the test
         if (!(px.countWeight[v] > 0.0)) continue;   // a grid vertex of weight 0 (the tetrahedral split's)
         // 7 noise pairs per vertex, from two 2 x 2 blocks of its noise texels away from its angular cells (the
         // angular grid spans |h.xy| / R <= 1 / R cells around the vertex's texel).
@@ -400,7 +402,7 @@ float glintEnvironmentFactor(GlintPixel px, GlintSurface s, GlintEnvironment env
         float c[8];
         kk25Multinomial(px.trials[v], tree, rnd, c);
         for (int i = 0; i < 8; ++i) D[i] += px.countWeight[v] * c[i];
-    }
+    } while (++v < glintLoopCount(DELIOT_VERTICES));
     float observed = 0.0;
     for (int i = 0; i < 8; ++i) observed += env.radiance[i] * D[i];
     return observed / expected;
