@@ -216,6 +216,30 @@ TEST(GlintMapping, SharedDataFollowTheDensestGlintyMaterial) {
     EXPECT_FLOAT_EQ(sharedParams(findGlintMethod("deliot2023"), {sparse, dense}, {})["log_density"], std::log(0.2f * 1e4f));
 }
 
+// The lighting program compiles the enumerations every material shares as constants (methods.h uniformChoices):
+// only enumerations, only when every row agrees, with that row's index; the other parameters keep reading the
+// material's row.
+TEST(GlintMapping, EnumerationsEveryMaterialSharesCompileAsConstants) {
+    const GlintMethod& deliot = findGlintMethod("deliot2023");
+    Material a, b;
+    a.glinty = b.glinty = true;
+    b.glint.density = 10.0f * a.glint.density;   // a different log_density (not an enumeration)
+    const ParamValues soft = {{"gate", 0.0f}}, hard = {{"gate", 1.0f}};
+    ParamValues same = uniformChoices(deliot, {materialParams(deliot, a, hard), materialParams(deliot, b, hard)});
+    ASSERT_EQ(same.count("gate"), 1u);
+    EXPECT_EQ(same["gate"], 1.0f);
+    EXPECT_EQ(same.count("log_density"), 0u) << "a continuous parameter never becomes a constant";
+    ParamValues mixed = uniformChoices(deliot, {materialParams(deliot, a, hard), materialParams(deliot, b, soft)});
+    EXPECT_EQ(mixed.count("gate"), 0u) << "materials that disagree keep the per-material switch";
+    EXPECT_EQ(mixed.count("probability"), 1u) << "the others still agree";
+    EXPECT_TRUE(uniformChoices(deliot, {}).empty());
+    std::string glsl = methodParamsGlsl(deliot, true, same);
+    EXPECT_NE(glsl.find("#define P_GATE 1.0\n"), std::string::npos) << glsl;
+    EXPECT_NE(glsl.find("#define P_LOG_DENSITY u_materialMethodParams[g_glintMaterial"), std::string::npos) << glsl;
+    EXPECT_NE(methodParamsGlsl(deliot, true, mixed).find("#define P_GATE u_materialMethodParams[g_glintMaterial"),
+              std::string::npos);
+}
+
 TEST(GlintLights, SpotFalloffAndRangeWindowFollowKhrLightsPunctual) {
     EXPECT_FLOAT_EQ(spotAttenuation(std::cos(0.1f), 0.2f, 0.5f), 1.0f);   // inside the inner cone
     EXPECT_FLOAT_EQ(spotAttenuation(std::cos(0.6f), 0.2f, 0.5f), 0.0f);   // outside the outer cone

@@ -1,6 +1,7 @@
 #include "glints/methods.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 
 #include "core/error.h"
@@ -366,7 +367,20 @@ std::vector<float> packParameters(const std::vector<ParamSpec>& params, const Pa
     return packed;
 }
 
-std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial) {
+ParamValues uniformChoices(const GlintMethod& method, const std::vector<ParamValues>& perMaterial) {
+    ParamValues constants;
+    if (perMaterial.empty()) return constants;
+    for (const ParamSpec& spec : method.params) {
+        if (spec.choices.empty()) continue;
+        const float first = paramOr(perMaterial.front(), spec);
+        bool same = true;
+        for (const ParamValues& row : perMaterial) same = same && paramOr(row, spec) == first;
+        if (same && first == std::floor(first)) constants[spec.name] = first;   // an index (parseParamValue)
+    }
+    return constants;
+}
+
+std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial, const ParamValues& constants) {
     std::string glsl = parameterBlockGlsl(method.params, 3, "MethodParamBlock", "u_methodParams", "PS_", kMaxMethodParams);
     if (!perMaterial) {
         for (const ParamSpec& spec : method.params) {
@@ -383,6 +397,11 @@ std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial) {
     for (size_t i = 0; i < method.params.size(); ++i) {
         std::string upper = method.params[i].name;
         std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+        if (auto constant = constants.find(method.params[i].name); constant != constants.end()) {
+            // An enumeration's index: an integer, exact as a float literal.
+            glsl += "#define P_" + upper + " " + std::to_string(int(constant->second)) + ".0\n";
+            continue;
+        }
         glsl += "#define P_" + upper + " u_materialMethodParams[g_glintMaterial * " + std::to_string(kMaxMethodParams / 4) +
                 " + " + std::to_string(i / 4) + "]." + lanes[i % 4] + "\n";
     }

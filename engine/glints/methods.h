@@ -136,8 +136,15 @@ std::string registerGlintMethod(GlintMethod method);
 // GLSL preamble declaring the method-parameter block and one P_<NAME> macro per parameter. With perMaterial
 // (the lighting pass), P_<NAME> reads the row of the material g_glintMaterial in a storage buffer
 // (BINDING_MATERIAL_METHOD_PARAMS, kMaxMethodParams floats per material, packMethodParams order) and the block
-// holds the shared values (PS_<NAME>); otherwise P_<NAME> and PS_<NAME> both read the block.
-std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial = false);
+// holds the shared values (PS_<NAME>); otherwise P_<NAME> and PS_<NAME> both read the block. A parameter in
+// `constants` makes P_<NAME> that constant instead (the lighting pass's enumerations that every material shares:
+// uniformChoices).
+std::string methodParamsGlsl(const GlintMethod& method, bool perMaterial = false, const ParamValues& constants = {});
+// The method's enumerations (ParamSpec::choices) that have one value on every row of `perMaterial` (each material's
+// values, glint_mapping.h materialParams), with that value; none when `perMaterial` is empty. The lighting program
+// compiles them as constants: llvmpipe runs both sides of every branch, so a per-material switch between two
+// variants of a method paid for both at every glinty pixel (kemppinen2025's 4 or 16 neighbours: 20 cells).
+ParamValues uniformChoices(const GlintMethod& method, const std::vector<ParamValues>& perMaterial);
 // Packs values in the order of methodParamsGlsl (std140 vec4 array).
 std::vector<float> packMethodParams(const GlintMethod& method, const ParamValues& values);
 

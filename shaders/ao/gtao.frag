@@ -66,7 +66,10 @@ void main() {
     // Interleaved per target texel, so that the resolve's 4 x 4 texels hold each rotation once at either step.
     float sliceOffset = bayer4(texel), stepOffset = bayer4(texel.yx);
     float visible = 0.0, unoccluded = 0.0;
-    for (int s = 0; s < slices; ++s) {
+    // Both loops run at least once (ao.slices, ao.steps >= 1) and test at their bottom: llvmpipe runs a top-tested
+    // loop's body once more with every pixel masked off (lights/ltc.glsl ltcLoopCount). `continue` goes to the test.
+    int s = 0;
+    do {
         float phi = PI * (float(s) + sliceOffset) / float(slices);
         vec2 omega = vec2(cos(phi), sin(phi));
         // The slice plane holds V and the screen direction; its angles are measured from V towards +omega.
@@ -83,7 +86,8 @@ void main() {
         // tangent plane (cos(n +- pi/2)); samples beyond the radius fade to it.
         float lowPlus = cos(n + HALF_PI), lowMinus = cos(n - HALF_PI);
         float cosPlus = lowPlus, cosMinus = lowMinus;
-        for (int j = 0; j < steps; ++j) {
+        int j = 0;
+        do {
             float t = (float(j) + stepOffset) / float(steps);
             float distancePixels = max(t * t * radiusPixels, float(j) + 1.0);   // denser near the centre
             for (int side = 0; side < 2; ++side) {
@@ -104,7 +108,7 @@ void main() {
                 if (side == 0) cosPlus = max(cosPlus, mix(lowPlus, c, weight));
                 else cosMinus = max(cosMinus, mix(lowMinus, c, weight));
             }
-        }
+        } while (++j < steps);
         float h1 = -acos(clamp(cosMinus, -1.0, 1.0)), h2 = acos(clamp(cosPlus, -1.0, 1.0));
         h1 = n + max(h1 - n, -HALF_PI);
         h2 = n + min(h2 - n, HALF_PI);
@@ -114,6 +118,6 @@ void main() {
         float arc = 0.25 * (-cos(2.0 * h1 - n) + cosn + 2.0 * h1 * sinn) + 0.25 * (-cos(2.0 * h2 - n) + cosn + 2.0 * h2 * sinn);
         visible += projectedLength * arc;
         unoccluded += projectedLength * (cosn + n * sinn);
-    }
+    } while (++s < slices);
     o_visibility = unoccluded > 1e-6 ? clamp(visible / unoccluded, 0.0, 1.0) : 1.0;
 }

@@ -16,7 +16,7 @@ bool sceneHasClearcoat(const Scene& scene) {
 }
 
 gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows,
-                                    bool nonGlinty, bool clearcoat) {
+                                    bool nonGlinty, bool clearcoat, const ParamValues& constantChoices) {
     const GlintMethod& method = findGlintMethod(methodId);
     const IblMode& ibl = findIblMode(iblId);
     checkIblModeMethod(ibl, method.id);
@@ -36,7 +36,7 @@ gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::stri
         desc.defines.push_back(nonGlintyDefine);                          // misfires on the literal's temporary)
         desc.name += "/non-glinty";
     }
-    desc.preamble = methodParamsGlsl(method, true) + iblParamsGlsl(ibl);
+    desc.preamble = methodParamsGlsl(method, true, constantChoices) + iblParamsGlsl(ibl);
     desc.includeMacros["GLINT_METHOD_FILE"] = method.shaderFile;
     desc.includeMacros["IBL_MODE_FILE"] = ibl.shaderFile;
     return desc;
@@ -49,7 +49,7 @@ LightingPass::LightingPass(const std::filesystem::path& shaderRoot, const Render
       iblId_(settings.ibl),
       shadows_(settings.value(param::shadow_enabled) > 0.5f),
       capture_(capture),
-      program_(shaderRoot, lightingProgramDesc(methodId_, iblId_, shadows_, false, clearcoat_)) {
+      program_(shaderRoot, programDesc(false)) {
     methodParams_ = gl::createBuffer(kMaxMethodParams * sizeof(float), nullptr);
     iblParams_ = gl::createBuffer(kMaxIblParams * sizeof(float), nullptr);
     createMethodResources();
@@ -65,8 +65,18 @@ void LightingPass::createMethodResources() {
     iblResources_ = ibl.createResources ? ibl.createResources() : nullptr;
 }
 
+gl::ProgramDesc LightingPass::programDesc(bool nonGlinty) const {
+    return lightingProgramDesc(methodId_, iblId_, shadows_, nonGlinty, clearcoat_, constantChoices_);
+}
+
+void LightingPass::rebuildVariant() {
+    gl::Program fresh(shaderRoot_, programDesc(false));
+    program_ = std::move(fresh);   // swap only after a successful link
+    nonGlintyProgram_.reset();     // rebuilt on the next split frame
+}
+
 bool LightingPass::rebuildProgram() {
-    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, false, clearcoat_));
+    gl::Program fresh(shaderRoot_, programDesc(false));
     program_ = std::move(fresh);   // swap only after a successful link
     nonGlintyProgram_.reset();     // rebuilt from the same files on the next split frame
     if (findGlintMethod(methodId_).resourcesFrom == methodResourcesFrom_) return false;
@@ -75,10 +85,14 @@ bool LightingPass::rebuildProgram() {
 }
 
 void LightingPass::setShadows(bool shadows) {
-    gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows, false, clearcoat_));
-    program_ = std::move(fresh);
-    nonGlintyProgram_.reset();
+    const bool previous = shadows_;
     shadows_ = shadows;
+    try {
+        rebuildVariant();
+    } catch (...) {
+        shadows_ = previous;   // the programs in use still match the state
+        throw;
+    }
 }
 
 PassResources LightingPass::resources() const {
@@ -98,7 +112,7 @@ std::vector<gl::Program*> LightingPass::programs() {
 
 void LightingPass::buildSplitPrograms() {
     nonGlintyProgram_ =
-        std::make_unique<gl::Program>(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, true, clearcoat_));
+        std::make_unique<gl::Program>(shaderRoot_, programDesc(true));
     if (!classProgram_)
         classProgram_ = std::make_unique<gl::Program>(
             shaderRoot_, gl::ProgramDesc{"lighting class", {{GL_VERTEX_SHADER, "common/fullscreen.vert"},
@@ -130,11 +144,19 @@ void LightingPass::uploadMethodParams(const Scene& scene, const RenderSettings& 
     rows.reserve((scene.materials.size() + 1) * kMaxMethodParams);
     std::vector<ParamValues> perMaterial;
     perMaterial.reserve(scene.materials.size());
+    std::vector<ParamValues> perMaterialRows;   // every material's values, as its row of the buffer
+    perMaterialRows.reserve(scene.materials.size());
     for (const Material& m : scene.materials) {
         perMaterial.push_back(materialParams(method, m, overrides));
+        perMaterialRows.push_back(perMaterial.back());
         std::vector<float> row = packMethodParams(method, perMaterial.back());
         rows.insert(rows.end(), row.begin(), row.end());
         if (!m.glinty) perMaterial.back().clear();
+    }
+    // Enumerations every material shares compile as constants (a scene or an edit that changes them rebuilds).
+    if (ParamValues constants = uniformChoices(method, perMaterialRows); constants != constantChoices_) {
+        constantChoices_ = std::move(constants);
+        rebuildVariant();
     }
     if (methodResources_) methodResources_->setMaterials(perMaterial);
     if (rows.empty()) rows = shared;
@@ -150,10 +172,8 @@ void LightingPass::prepare(PrepareContext& context) {
     const RenderSettings& settings = context.settings;
     // A coat appeared or went (a scene, a material override): the programs with or without its terms.
     if (const bool coated = sceneHasClearcoat(context.scene); coated != clearcoat_) {
-        gl::Program fresh(shaderRoot_, lightingProgramDesc(methodId_, iblId_, shadows_, false, coated));
-        program_ = std::move(fresh);
-        nonGlintyProgram_.reset();   // rebuilt on the next split frame
         clearcoat_ = coated;
+        rebuildVariant();
     }
     Environment& environment = context.environment;
     const IblMode& ibl = findIblMode(iblId_);

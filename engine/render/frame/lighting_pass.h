@@ -34,8 +34,11 @@ namespace glimmer {
 // `nonGlinty`: the variant for the pixels of non-glinty materials (NON_GLINTY_PIXELS).
 // `clearcoat`: compiled with the clear coat's terms (SCENE_CLEARCOAT); a scene without a coated material gets the
 // program without them (llvmpipe ran them under an all-off mask: 2-6 ms of the atrium's 45 ms lighting pass).
+// `constantChoices`: the method's enumerations compiled as constants (methods.h uniformChoices: those every material
+// of the scene shares; rebuilt when that changes).
 gl::ProgramDesc lightingProgramDesc(const std::string& methodId, const std::string& iblId, bool shadows = true,
-                                    bool nonGlinty = false, bool clearcoat = true);
+                                    bool nonGlinty = false, bool clearcoat = true,
+                                    const ParamValues& constantChoices = {});
 // Whether any of the scene's materials has a clear coat (the lighting program's `clearcoat` variant).
 bool sceneHasClearcoat(const Scene& scene);
 
@@ -61,6 +64,10 @@ public:
     GlintMethodResources* methodResources() const { return methodResources_.get(); }
 
 private:
+    // This pass's lighting program (the glinty one, or the variant for the other pixels) for its current state.
+    gl::ProgramDesc programDesc(bool nonGlinty) const;
+    // Rebuilds the lighting program (the split variant on its next frame) after a change of that state.
+    void rebuildVariant();
     void createMethodResources();
     // Built on the first split frame (offscreen renders that never split do not compile them).
     void buildSplitPrograms();
@@ -74,6 +81,7 @@ private:
     std::string methodId_, iblId_;
     bool shadows_;
     bool clearcoat_ = false;   // the programs' variant: built for a scene with coated materials (prepare() follows it)
+    ParamValues constantChoices_;   // the enumerations compiled as constants (prepare() follows the materials)
     ibl::SceneCapture& capture_;
     gl::Program program_;
     std::unique_ptr<gl::Program> nonGlintyProgram_, classProgram_;
