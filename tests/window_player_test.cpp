@@ -255,5 +255,25 @@ TEST(DebugViewDisplay, DepthAndFootprintAreMappedIntoTheDisplayRange) {
     }
 }
 
+// Where nothing was drawn there is no footprint: the footprint view shows it black (it showed LOD 0's full green).
+TEST(DebugViewDisplay, NothingDrawnHasNoFootprintAndShowsBlack) {
+    RenderRequest court;
+    court.scene = "atrium";
+    court.camera = "court";
+    court.environment = "none";
+    court.settings.method = "deliot2023";
+    court.settings.debugView = findAov("footprint").viewId;
+    court.width = 64;
+    court.height = 36;
+    RenderResult r = OffscreenSession(court).render(court);
+    size_t sky = 0;
+    for (size_t i = 0; i < size_t(r.width * r.height); ++i) {
+        if (r.hdr[i * 4 + 3] > 0.0f) continue;
+        ++sky;
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(int(r.display[i * 4 + size_t(k)]), 0) << "sky pixel " << i;
+    }
+    EXPECT_GT(sky, 50u) << "the court's view holds sky";
+}
+
 }  // namespace
 }  // namespace glimmer

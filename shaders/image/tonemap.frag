@@ -37,9 +37,11 @@ void main() {
     else if (view == VIEW_DEPTH) display = vec3(clamp(log2(1.0 + hdr.r) / 8.0, 0.0, 1.0));
     // Footprint: R the anisotropy ratio (>= 1) as log2(ratio) / 4 (1 black, 16 full), G the LOD log2(minor axis in
     // UV) from -16 (black) to 0 (full); B method-specific, clamped. Clamped raw values were red or magenta
-    // everywhere. The EXR keeps the raw values.
+    // everywhere. The EXR keeps the raw values. A ratio below 1 is no footprint (the background, or a method
+    // without one): black, not LOD 0's full green.
     else if (view == VIEW_FOOTPRINT)
-        display = clamp(vec3(log2(max(hdr.r, 1.0)) / 4.0, (hdr.g + 16.0) / 16.0, hdr.b), 0.0, 1.0);
+        display = hdr.r < 1.0 ? vec3(0.0)
+                              : clamp(vec3(log2(hdr.r) / 4.0, (hdr.g + 16.0) / 16.0, hdr.b), 0.0, 1.0);
     else display = clamp(hdr, 0.0, 1.0);
     o_color = vec4(display, 1.0);
 }
