@@ -45,6 +45,22 @@ TEST(AsyncGpuTimers, ResultsArriveLateWithEveryPassNamedAndNoWallClock) {
         EXPECT_EQ(names.front(), "shadow_sun");   // the sphere's sun, first frame: its cascades are drawn
         EXPECT_EQ(names.back(), "tonemap");
 
+        // A new method: the frames in flight timed the previous passes, which the window must not list while the
+        // new programs compile. The first readout after the change names the new method's own passes.
+        RenderSettings wang;
+        wang.method = "wang2020";
+        renderer.setSettings(wang);
+        EXPECT_TRUE(renderer.passTimings().empty()) << "the previous method's timings are gone";
+        std::vector<std::string> after;
+        for (int frame = 0; frame < 12 && after.empty(); ++frame) {
+            glFinish();
+            renderer.renderView(scene, gpuScene, camera, 64, 64);
+            for (const PassTiming& t : renderer.passTimings()) after.push_back(t.name);
+        }
+        ASSERT_FALSE(after.empty());
+        EXPECT_TRUE(std::any_of(after.begin(), after.end(), [](const std::string& n) { return n.rfind("glint_", 0) == 0; }))
+            << "the first readout after the change is of a wang2020 frame (its glint passes)";
+
         // measurePasses still times with the wall clock, for this frame.
         renderer.renderView(scene, gpuScene, camera, 64, 64, true);
         ASSERT_FALSE(renderer.passTimings().empty());

@@ -209,6 +209,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
     }
     shaderErrors_.erase(previousName);
     resized_ = false;   // the new lighting pass owns no targets yet
+    timer_.discard();   // the frames in flight timed the previous method's passes
 }
 
 std::vector<std::filesystem::path> Renderer::shaderDependencies() const {

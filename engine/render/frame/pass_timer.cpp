@@ -53,6 +53,11 @@ void PassTimer::beginFrame(Mode mode) {
     }
 }
 
+void PassTimer::discard() {
+    timings_.clear();
+    for (Slot& slot : async_) slot.names.clear();   // their queries are reused by later frames
+}
+
 void PassTimer::recordWallOnly(const std::string& name, double wallMs) {
     if (mode_ == Mode::Measure) timings_.push_back({name, wallMs, 0.0});
 }

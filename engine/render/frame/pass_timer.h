@@ -35,6 +35,10 @@ public:
     // (timings() keeps the previous readout otherwise). Measure and Off: timings() starts empty.
     void beginFrame(Mode mode);
     const std::vector<PassTiming>& timings() const { return timings_; }
+    // Forgets the readout and the frames still in flight: after a change of the frame's passes (a new method), so
+    // the window lists no pass of the previous frames while the new programs compile (seconds of frames on
+    // llvmpipe); timings() is empty until a frame issued after it reads back.
+    void discard();
     // Measure mode: a pass timed elsewhere (on-demand CPU/compute work with its own wall clock).
     void recordWallOnly(const std::string& name, double wallMs);
 
