@@ -76,9 +76,7 @@ void LightingPass::rebuildVariant() {
 }
 
 bool LightingPass::rebuildProgram() {
-    gl::Program fresh(shaderRoot_, programDesc(false));
-    program_ = std::move(fresh);   // swap only after a successful link
-    nonGlintyProgram_.reset();     // rebuilt from the same files on the next split frame
+    rebuildVariant();
     if (findGlintMethod(methodId_).resourcesFrom == methodResourcesFrom_) return false;
     createMethodResources();
     return true;
@@ -144,20 +142,19 @@ void LightingPass::uploadMethodParams(const Scene& scene, const RenderSettings& 
     rows.reserve((scene.materials.size() + 1) * kMaxMethodParams);
     std::vector<ParamValues> perMaterial;
     perMaterial.reserve(scene.materials.size());
-    std::vector<ParamValues> perMaterialRows;   // every material's values, as its row of the buffer
-    perMaterialRows.reserve(scene.materials.size());
     for (const Material& m : scene.materials) {
         perMaterial.push_back(materialParams(method, m, overrides));
-        perMaterialRows.push_back(perMaterial.back());
         std::vector<float> row = packMethodParams(method, perMaterial.back());
         rows.insert(rows.end(), row.begin(), row.end());
-        if (!m.glinty) perMaterial.back().clear();
     }
-    // Enumerations every material shares compile as constants (a scene or an edit that changes them rebuilds).
-    if (ParamValues constants = uniformChoices(method, perMaterialRows); constants != constantChoices_) {
+    // Enumerations every material shares (every row of the buffer) compile as constants; a scene or an edit that
+    // changes them rebuilds the programs (prepare()).
+    if (ParamValues constants = uniformChoices(method, perMaterial); constants != constantChoices_) {
         constantChoices_ = std::move(constants);
-        rebuildVariant();
+        variantChanged_ = true;
     }
+    for (size_t i = 0; i < perMaterial.size(); ++i)
+        if (!scene.materials[i].glinty) perMaterial[i].clear();   // the method's data ignore them
     if (methodResources_) methodResources_->setMaterials(perMaterial);
     if (rows.empty()) rows = shared;
     const GLsizeiptr bytes = GLsizeiptr(rows.size() * sizeof(float));
@@ -173,7 +170,7 @@ void LightingPass::prepare(PrepareContext& context) {
     // A coat appeared or went (a scene, a material override): the programs with or without its terms.
     if (const bool coated = sceneHasClearcoat(context.scene); coated != clearcoat_) {
         clearcoat_ = coated;
-        rebuildVariant();
+        variantChanged_ = true;
     }
     Environment& environment = context.environment;
     const IblMode& ibl = findIblMode(iblId_);
@@ -182,6 +179,10 @@ void LightingPass::prepare(PrepareContext& context) {
         iblResources_->prepare(settings.iblModeValues(iblId_), context.scene,
                                environment.enabled() ? environment.sourceCube() : 0, capture_);
     uploadMethodParams(context.scene, settings);
+    if (variantChanged_) {   // the coat or the constant enumerations: one rebuild for both
+        variantChanged_ = false;
+        rebuildVariant();
+    }
     std::vector<float> iblParams = packIblParams(ibl, settings.iblModeValues(ibl.id));
     glNamedBufferSubData(iblParams_.id(), 0, GLsizeiptr(iblParams.size() * sizeof(float)), iblParams.data());
     // On-demand data of the method and the IBL mode (tables, trees, the prefiltered environment of wang2020),

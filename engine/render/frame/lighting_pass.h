@@ -82,6 +82,7 @@ private:
     bool shadows_;
     bool clearcoat_ = false;   // the programs' variant: built for a scene with coated materials (prepare() follows it)
     ParamValues constantChoices_;   // the enumerations compiled as constants (prepare() follows the materials)
+    bool variantChanged_ = false;   // clearcoat_ or constantChoices_ changed: prepare() rebuilds the programs
     ibl::SceneCapture& capture_;
     gl::Program program_;
     std::unique_ptr<gl::Program> nonGlintyProgram_, classProgram_;
