@@ -84,6 +84,40 @@ Quadtree buildQuadtree(double particles, int depth, uint32_t seed, int threads) 
     return t;
 }
 
+std::vector<uint32_t> shaderNodeWords(const Quadtree& tree) {
+    std::vector<uint32_t> words = tree.counts;
+    if (!words.empty() && words[0] >= kChildMask)
+        throw UsageError("wang2020: " + std::to_string(words[0]) + " particles per tile do not fit the shader's tree");
+    // Bottom-up, so that each child's word is final when its parent reads it: a leaf with one particle points at
+    // itself; a parent with one particle has exactly one child with one particle and points where it points.
+    size_t leaves = Quadtree::levelOffset(tree.depth);
+    for (size_t i = leaves; i < words.size(); ++i)
+        if (words[i] == 1u) words[i] = kSingleParticle;
+    for (int level = tree.depth - 1; level >= 0; --level) {
+        size_t base = Quadtree::levelOffset(level), childBase = Quadtree::levelOffset(level + 1);
+        int shift = tree.depth - level - 1;   // bits of a child's relative leaf coordinates
+        for (int y = 0; y < (1 << level); ++y)
+            for (int x = 0; x < (1 << level); ++x) {
+                uint32_t& word = words[base + (size_t(y) << level) + size_t(x)];
+                uint32_t count = word, single = 0u, mask = 0u;
+                for (uint32_t c = 0; c < 4; ++c) {
+                    int cx = 2 * x + int(c & 1u), cy = 2 * y + int(c >> 1);
+                    uint32_t child = words[childBase + (size_t(cy) << (level + 1)) + size_t(cx)];
+                    if (child == 0u) continue;
+                    mask |= 1u << c;
+                    uint32_t rx = ((c & 1u) << shift) + (child & 0x1FFFu);
+                    uint32_t ry = ((c >> 1) << shift) + ((child >> 13) & 0x1FFFu);
+                    single = kSingleParticle | (ry << 13) | rx;   // used when count is 1 (one child, itself single)
+                }
+                if (count == 1u)
+                    word = single;
+                else if (count != 0u && count < (1u << 26))
+                    word = kChildMask | (mask << 26) | count;
+            }
+    }
+    return words;
+}
+
 Particle leafParticle(const Quadtree& tree, int x, int y, uint32_t k, float alpha) {
     int mask = (1 << tree.depth) - 1;
     uint32_t leafId = (uint32_t(y & mask) << tree.depth) | uint32_t(x & mask);

@@ -31,6 +31,19 @@ struct Quadtree {
 // thread count (one random stream per level-2 subtree).
 Quadtree buildQuadtree(double particles, int depth, uint32_t seed, int threads = 0);
 
+// The tree as the shader reads it (shaders/glints/wang2020/wang2020.glsl), one uint per node in `counts`' order:
+// - a node holding exactly one particle: kSingleParticle | the particle's leaf relative to the node (x in bits 0-12,
+//   y in bits 13-25). At the default N a leaf holds 0.01-0.03 particles, so a thin footprint meets many such nodes:
+//   the shader reaches the particle in one step instead of descending a chain of single children with three empty
+//   siblings at every level.
+// - an inner node with fewer than 2^26 particles: kChildMask | which children hold particles (bit c for child
+//   c = x + 2 y, bits 26-29) | the count (bits 0-25): the shader pushes only those children.
+// - otherwise the plain count (leaves, and inner nodes so full that all four children hold particles).
+// Ours: the paper's nodes store counts and AABBs. Counts must stay below 2^30 (N is at most 1e9; UsageError).
+inline constexpr uint32_t kSingleParticle = 0x80000000u;
+inline constexpr uint32_t kChildMask = 0x40000000u;
+std::vector<uint32_t> shaderNodeWords(const Quadtree& tree);
+
 // Integer hash shared with GLSL (PCG output permutation).
 inline uint32_t pcgHash(uint32_t v) {
     uint32_t state = v * 747796405u + 2891336453u;

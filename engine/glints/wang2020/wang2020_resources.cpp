@@ -120,7 +120,8 @@ std::vector<std::pair<std::string, double>> Wang2020Resources::update(const Para
         // Sec. 4.4 "Spatial Tree Construction" (CPU here, a GPU pass in the paper).
         Stopwatch tree;
         wang2020::Quadtree quadtree = wang2020::buildQuadtree(particles, int(depth), uint32_t(seed));
-        quadtree_ = gl::createBuffer(GLsizeiptr(quadtree.bytes()), quadtree.counts.data(), 0);
+        std::vector<uint32_t> words = wang2020::shaderNodeWords(quadtree);
+        quadtree_ = gl::createBuffer(GLsizeiptr(words.size() * sizeof(uint32_t)), words.data(), 0);
         particles_ = particles;
         depth_ = depth;
         seed_ = seed;

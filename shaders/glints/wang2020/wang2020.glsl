@@ -20,7 +20,8 @@
 // D G F / (4 (i.n)(o.n)), so glintD returns D_eq = 4 (i.h) D^ / (a(A) sigma(Omega_o) (h.n)). The 1 / (h.n) is ours:
 // particle normals follow D(m)(m.n) (projected area), so this makes E[D_eq] = D(h) of the particles' NDF (the material's: GGX or Beckmann) as the interface asks.
 // Deviations: the paper's tree nodes store id, count, depth, child count and AABB (two float4); ours is an
-// implicit complete tree of counts. The traversal gathers once per pixel in glintSetup (the paper's two-step
+// implicit complete tree of counts, where a node holding a single particle stores that particle's leaf instead
+// (wang2020::shaderNodeWords): micro pixels test that particle at once, meso pixels descend only its path. The traversal gathers once per pixel in glintSetup (the paper's two-step
 // traversal with a tree cut, Sec. 5), so lights only compare lambdas.
 // Extended lights (README "Extended lights"): Sec. 5 shades point and directional lights with the DPF of their
 // direction; an area light's glints are that at its centre direction over the smooth NDF there (the lighting pass's
@@ -31,7 +32,7 @@
 #define GLINT_COLOR_D 1
 
 layout(binding = UNIT_METHOD_FIRST) uniform sampler3D u_wangDpf;
-layout(std430, binding = BINDING_METHOD_FIRST) readonly buffer WangQuadtree { uint u_wangCounts[]; };
+layout(std430, binding = BINDING_METHOD_FIRST) readonly buffer WangQuadtree { uint u_wangNodes[]; };
 // One accumulated DPF per distinct (NDF, roughness) of the glinty materials, stacked along z (slot k holds theta_i
 // rows [k T, (k + 1) T)), and each material's slot; slot 0 is the shared values' table (u_wangDpf).
 layout(binding = UNIT_METHOD_FIRST + 1) uniform sampler3D u_wangDpfStack;
@@ -98,10 +99,16 @@ float wangHashUnit(uint leafId, uint particle, uint channel) {
     return float(h >> 8u) * (1.0 / 16777216.0);
 }
 
-uint wangCount(int level, ivec2 cell) {
+// The node words of wang2020::shaderNodeWords: WANG_SINGLE_PARTICLE | the leaf of the node's one particle (x in bits
+// 0-12, y in 13-25, relative to the node); WANG_CHILD_MASK | its non-empty children (bits 26-29) | its count
+// (bits 0-25); or its plain count (leaves, and inner nodes whose four children all hold particles).
+#define WANG_SINGLE_PARTICLE 0x80000000u
+#define WANG_CHILD_MASK 0x40000000u
+
+uint wangNodeWord(int level, ivec2 cell) {
     int mask = (1 << level) - 1;
     uint offset = ((1u << uint(2 * level)) - 1u) / 3u;
-    return u_wangCounts[offset + (uint(cell.y & mask) << uint(level)) + uint(cell.x & mask)];
+    return u_wangNodes[offset + (uint(cell.y & mask) << uint(level)) + uint(cell.x & mask)];
 }
 
 // Footprint-local coordinates (s, t) of a UV point; inside when both are within [-1/2, 1/2].
@@ -161,35 +168,54 @@ GlintPixel glintSetup(GlintSurface s) {
     while (top > 0 && px.visits < WANG_MAX_VISITS) {
         ivec3 node = stack[--top];
         ++px.visits;
-        uint count = wangCount(node.x, node.yz);
-        if (count == 0u) continue;
-        float size = exp2(-float(node.x));
-        vec2 nodeLo = vec2(node.yz) * size, nodeHi = nodeLo + size;
-        if (any(greaterThan(nodeLo, hi)) || any(lessThan(nodeHi, lo))) continue;
-        // Separating axes of the parallelogram (its s and t axes; the AABB test above covers the box's axes):
-        // nodes beside a thin, slanted footprint are culled, not descended.
-        vec2 q0 = wangLocal(nodeLo, s.uv, inverseJ), q1 = wangLocal(nodeHi, s.uv, inverseJ);
-        vec2 q2 = wangLocal(vec2(nodeLo.x, nodeHi.y), s.uv, inverseJ), q3 = wangLocal(vec2(nodeHi.x, nodeLo.y), s.uv, inverseJ);
-        vec2 qMin = min(min(q0, q1), min(q2, q3)), qMax = max(max(q0, q1), max(q2, q3));
-        if (any(greaterThan(qMin, vec2(0.5))) || any(lessThan(qMax, vec2(-0.5)))) continue;
-        if (meso && all(lessThanEqual(abs(qMin), vec2(0.5))) && all(lessThanEqual(abs(qMax), vec2(0.5)))) {
-            px.inFootprint += float(count) * keep;   // node wholly inside A (thinning in expectation)
-            continue;
+        uint word = wangNodeWord(node.x, node.yz);
+        if (word == 0u) continue;
+        // A single particle: its leaf (unwrapped, like the node's cell). Micro pixels test the particle itself:
+        // the node tests below could only cull what the particle test rejects.
+        bool single = word >= WANG_SINGLE_PARTICLE;
+        bool masked = !single && word >= WANG_CHILD_MASK;
+        uint count = single ? 1u : (masked ? word & 0x03FFFFFFu : word);
+        uint children = masked ? (word >> 26u) & 0xFu : 0xFu;
+        ivec2 leaf = single ? (node.yz << (depth - node.x)) + ivec2(int(word & 0x1FFFu), int((word >> 13u) & 0x1FFFu))
+                            : node.yz;
+        if (!single || meso) {
+            float size = exp2(-float(node.x));
+            vec2 nodeLo = vec2(node.yz) * size, nodeHi = nodeLo + size;
+            if (any(greaterThan(nodeLo, hi)) || any(lessThan(nodeHi, lo))) continue;
+            // Separating axes of the parallelogram (its s and t axes; the AABB test above covers the box's axes):
+            // nodes beside a thin, slanted footprint are culled, not descended.
+            vec2 q0 = wangLocal(nodeLo, s.uv, inverseJ), q1 = wangLocal(nodeHi, s.uv, inverseJ);
+            vec2 q2 = wangLocal(vec2(nodeLo.x, nodeHi.y), s.uv, inverseJ), q3 = wangLocal(vec2(nodeHi.x, nodeLo.y), s.uv, inverseJ);
+            vec2 qMin = min(min(q0, q1), min(q2, q3)), qMax = max(max(q0, q1), max(q2, q3));
+            if (any(greaterThan(qMin, vec2(0.5))) || any(lessThan(qMax, vec2(-0.5)))) continue;
+            if (meso && all(lessThanEqual(abs(qMin), vec2(0.5))) && all(lessThanEqual(abs(qMax), vec2(0.5)))) {
+                px.inFootprint += float(count) * keep;   // node wholly inside A (thinning in expectation)
+                continue;
+            }
+            if (node.x < depth) {
+                // Descend: into the child on the single particle's path (its siblings are empty), else all four.
+                if (single) {
+                    stack[top++] = ivec3(node.x + 1, leaf >> (depth - node.x - 1));
+                    continue;
+                }
+                if (top + 4 > WANG_STACK) continue;  // cannot happen for depth <= 12 (3 siblings per level + 4)
+                for (int c = 0; c < 4; ++c)
+                    if ((children & (1u << uint(c))) != 0u)
+                        stack[top++] = ivec3(node.x + 1, 2 * node.y + (c & 1), 2 * node.z + (c >> 1));
+                continue;
+            }
         }
-        if (node.x == depth) {
+        {
             int mask = (1 << depth) - 1;
-            uint leafId = (uint(node.z & mask) << uint(depth)) | uint(node.y & mask);
+            uint leafId = (uint(leaf.y & mask) << uint(depth)) | uint(leaf.x & mask);
             for (uint k = 0u; k < count; ++k) {
-                vec2 p = (vec2(node.yz) + vec2(wangHashUnit(leafId, k, 0u), wangHashUnit(leafId, k, 1u))) * leafSize;
+                vec2 p = (vec2(leaf) + vec2(wangHashUnit(leafId, k, 0u), wangHashUnit(leafId, k, 1u))) * leafSize;
                 if (!wangInside(wangLocal(p, s.uv, inverseJ))) continue;
                 if (keep < 1.0 && wangHashUnit(leafId, k, 5u) >= keep) continue;
                 px.inFootprint += 1.0;
                 if (!meso && px.lambdaCount < WANG_MAX_LAMBDAS) px.lambdas[px.lambdaCount++] = wangHashUnit(leafId, k, 2u);
             }
-            continue;
         }
-        if (top + 4 > WANG_STACK) continue;  // cannot happen for depth <= 12 (3 siblings per level + 4)
-        for (int c = 0; c < 4; ++c) stack[top++] = ivec3(node.x + 1, 2 * node.y + (c & 1), 2 * node.z + (c >> 1));
     }
     return px;
 }
