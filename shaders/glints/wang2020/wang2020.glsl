@@ -158,15 +158,20 @@ GlintPixel glintSetup(GlintSurface s) {
     int startLevel = clamp(int(floor(-log2(extent))), 0, depth);
     float cells = exp2(float(startLevel));
     ivec2 c0 = ivec2(floor(lo * cells)), c1 = ivec2(floor(hi * cells));
-    ivec3 stack[WANG_STACK];
+    // A stack entry is one uint: levels below startLevel (bits 28-31) and the cell relative to c0 at that level (x in
+    // bits 0-13, y in 14-27; below 3 x 2^12 for depth <= 12). llvmpipe keeps a local array in memory and reads it
+    // per pixel: one word per entry instead of an ivec3 was 0.83x of wang2020's lighting pass on the court.
+    uint stack[WANG_STACK];
     int top = 0;
-    for (int y = c0.y; y <= c1.y && y <= c0.y + 2; ++y)
-        for (int x = c0.x; x <= c1.x && x <= c0.x + 2; ++x) stack[top++] = ivec3(startLevel, x, y);
+    for (int y = 0; y <= c1.y - c0.y && y <= 2; ++y)
+        for (int x = 0; x <= c1.x - c0.x && x <= 2; ++x) stack[top++] = uint(y << 14 | x);
     // Meso pixels skip the per-particle work, except in the micro/meso band (they need the lambdas too).
     bool meso = px.scale == WANG_SCALE_MESO && px.microWeight <= 0.0;
     float leafSize = exp2(-float(depth));
     while (top > 0 && px.visits < WANG_MAX_VISITS) {
-        ivec3 node = stack[--top];
+        uint entry = stack[--top];
+        int below = int(entry >> 28u);
+        ivec3 node = ivec3(startLevel + below, (c0 << below) + ivec2(int(entry & 0x3FFFu), int((entry >> 14u) & 0x3FFFu)));
         ++px.visits;
         uint word = wangNodeWord(node.x, node.yz);
         if (word == 0u) continue;
@@ -194,14 +199,16 @@ GlintPixel glintSetup(GlintSurface s) {
             }
             if (node.x < depth) {
                 // Descend: into the child on the single particle's path (its siblings are empty), else all four.
+                uint rel = entry & 0x0FFFFFFFu;
+                uint childBase = uint(below + 1) << 28u | (rel << 1u & 0x0FFFC000u) | (rel << 1u & 0x3FFEu);
                 if (single) {
-                    stack[top++] = ivec3(node.x + 1, leaf >> (depth - node.x - 1));
+                    ivec2 r = (leaf >> (depth - node.x - 1)) & 1;
+                    stack[top++] = childBase | uint(r.y << 14 | r.x);
                     continue;
                 }
                 if (top + 4 > WANG_STACK) continue;  // cannot happen for depth <= 12 (3 siblings per level + 4)
                 for (int c = 0; c < 4; ++c)
-                    if ((children & (1u << uint(c))) != 0u)
-                        stack[top++] = ivec3(node.x + 1, 2 * node.y + (c & 1), 2 * node.z + (c >> 1));
+                    if ((children & (1u << uint(c))) != 0u) stack[top++] = childBase | uint((c >> 1) << 14 | (c & 1));
                 continue;
             }
         }
