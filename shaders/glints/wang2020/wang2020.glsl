@@ -20,9 +20,10 @@
 // D G F / (4 (i.n)(o.n)), so glintD returns D_eq = 4 (i.h) D^ / (a(A) sigma(Omega_o) (h.n)). The 1 / (h.n) is ours:
 // particle normals follow D(m)(m.n) (projected area), so this makes E[D_eq] = D(h) of the particles' NDF (the material's: GGX or Beckmann) as the interface asks.
 // Deviations: the paper's tree nodes store id, count, depth, child count and AABB (two float4); ours is an
-// implicit complete tree of counts, where a node holding a single particle stores that particle's leaf instead
-// (wang2020::shaderNodeWords): micro pixels test that particle at once, meso pixels descend only its path. The traversal gathers once per pixel in glintSetup (the paper's two-step
-// traversal with a tree cut, Sec. 5), so lights only compare lambdas.
+// implicit complete tree of one word per node (wang2020::shaderNodeWords): a node holding a single particle names
+// that particle's leaf (micro pixels test it at once, meso pixels descend only its path), an inner node its count
+// and its non-empty children (only those are pushed). The traversal gathers once per pixel in glintSetup (the
+// paper's two-step traversal with a tree cut, Sec. 5), so lights only compare lambdas.
 // Extended lights (README "Extended lights"): Sec. 5 shades point and directional lights with the DPF of their
 // direction; an area light's glints are that at its centre direction over the smooth NDF there (the lighting pass's
 // fallback). Its environment glints (Sec. 4) are the IBL mode `wang2020`, the default when this method is selected.
@@ -171,7 +172,8 @@ GlintPixel glintSetup(GlintSurface s) {
     while (top > 0 && px.visits < WANG_MAX_VISITS) {
         uint entry = stack[--top];
         int below = int(entry >> 28u);
-        ivec3 node = ivec3(startLevel + below, (c0 << below) + ivec2(int(entry & 0x3FFFu), int((entry >> 14u) & 0x3FFFu)));
+        ivec2 cell = (c0 << below) + ivec2(int(entry & 0x3FFFu), int((entry >> 14u) & 0x3FFFu));
+        ivec3 node = ivec3(startLevel + below, cell);
         ++px.visits;
         uint word = wangNodeWord(node.x, node.yz);
         if (word == 0u) continue;
